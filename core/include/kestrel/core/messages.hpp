@@ -1,0 +1,79 @@
+#pragma once
+// The time-stamped messages that flow between the HAL and the algorithms. Time first, units in
+// the comments, fixed size: a message can be copied into a queue slot without allocating.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+
+#include "kestrel/core/se2.hpp"
+#include "kestrel/core/time.hpp"
+
+namespace kestrel {
+
+// Largest scan of the supported lasers: the UTM-30LX gives 1081 beams over 270 degrees.
+inline constexpr std::size_t kMaxBeams = 1081;
+
+// Range codes below kMinValidRangeMm are not distances: like the Hokuyo SCIP protocol, the
+// scanner reports why a beam has no return.
+namespace range_code {
+inline constexpr uint16_t kNoReturn = 0;     // nothing within range (open space, glass)
+inline constexpr uint16_t kTooNear = 1;      // closer than the minimum range
+inline constexpr uint16_t kDropout = 2;      // lost return (dust, grazing incidence, mixed pixel)
+inline constexpr uint16_t kDeflected = 3;    // beam sent elsewhere (e.g. down by a mirror)
+}  // namespace range_code
+inline constexpr uint16_t kMinValidRangeMm = 20;
+
+struct LaserScan {
+  TimeUs stamp;                 // time the first beam was taken
+  Duration scan_period;         // time of one full mirror revolution
+  Duration beam_interval;       // time between consecutive beams
+  float first_angle_rad = 0;    // angle of beam 0 in the sensor frame, counter-clockwise
+  float angle_step_rad = 0;     // angle between consecutive beams, counter-clockwise
+  uint16_t max_range_mm = 0;    // the sensor's maximum range
+  uint16_t beam_count = 0;      // valid entries of range_mm
+  std::array<uint16_t, kMaxBeams> range_mm{};  // mm, or a range_code below kMinValidRangeMm
+
+  static bool is_return(uint16_t r) { return r >= kMinValidRangeMm; }
+  float angle_of(std::size_t i) const { return first_angle_rad + angle_step_rad * static_cast<float>(i); }
+  TimeUs time_of(std::size_t i) const { return stamp + beam_interval * static_cast<int64_t>(i); }
+};
+
+struct ImuSample {
+  TimeUs stamp;
+  Eigen::Vector3f accel_mps2 = Eigen::Vector3f::Zero();  // specific force, body frame (x fwd, y left, z up)
+  Eigen::Vector3f gyro_radps = Eigen::Vector3f::Zero();  // angular rate, body frame
+};
+
+struct AltimeterSample {
+  TimeUs stamp;
+  float height_m = 0;      // above the floor
+  float variance_m2 = 0;   // of height_m
+};
+
+// Set-point for the attitude-stabilised vehicle, the inputs u of paper 000 equation 1.
+struct AttitudeSetpoint {
+  TimeUs stamp;
+  float pitch_rad = 0;      // u_phi: positive pitches the nose down, accelerating along +x body
+  float roll_rad = 0;       // u_psi: positive accelerates along +y body
+  float thrust = 0;         // u_t: normalised collective thrust, 0..1
+  float yaw_rate_radps = 0; // u_theta: counter-clockwise positive
+};
+
+struct FlightStatus {
+  TimeUs stamp;
+  bool armed = false;
+  float battery_v = 0;
+  float roll_rad = 0;
+  float pitch_rad = 0;
+  float yaw_rad = 0;
+};
+
+// A 2D pose measurement with its covariance (x, y, theta), e.g. from the scan matcher.
+struct PoseMeasurement2 {
+  TimeUs stamp;                // time of the scan the pose was computed from
+  Pose2 pose;                  // m, m, rad
+  Eigen::Matrix3f covariance = Eigen::Matrix3f::Identity();  // m², m², rad²
+  uint32_t flags = 0;          // producer-specific quality flags
+};
+
+}  // namespace kestrel
