@@ -8,12 +8,12 @@ set -euo pipefail
 
 host_pkgs=(build-essential cmake ninja-build pkg-config git
            g++-arm-linux-gnueabihf g++-arm-linux-gnueabi qemu-user
-           libeigen3-dev libccd-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
+           libeigen3-dev libccd-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev zlib1g-dev
            binutils-arm-linux-gnueabihf)
 arm_pkgs=()
 for arch in armhf armel; do
   arm_pkgs+=("libccd-dev:$arch" "libgtest-dev:$arch" "libgmock-dev:$arch" "libbenchmark-dev:$arch"
-             "libc6:$arch" "libstdc++6:$arch"
+             "libc6:$arch" "libstdc++6:$arch" "zlib1g:$arch"
 )
 done
 

@@ -77,3 +77,33 @@ struct PoseMeasurement2 {
 };
 
 }  // namespace kestrel
+
+namespace kestrel {
+
+// The filter's estimate of the vehicle's motion: what guidance and control act on.
+// World frame: x, y horizontal, z up, heading counter-clockwise from the world x axis.
+struct NavState {
+  TimeUs stamp;
+  Eigen::Vector3f position_m = Eigen::Vector3f::Zero();
+  Eigen::Vector3f velocity_mps = Eigen::Vector3f::Zero();
+  Eigen::Vector3f accel_mps2 = Eigen::Vector3f::Zero();
+  float heading_rad = 0;
+  float yaw_rate_radps = 0;
+  Eigen::Vector3f position_std_m = Eigen::Vector3f::Zero();  // 1-sigma, per axis
+  float heading_std_rad = 0;
+  bool valid = false;  // false until the filter has been initialised by a pose measurement
+};
+
+// What guidance asks of the controller. In kPosition mode the controller drives to
+// position_m with velocity_mps as feed-forward; in kVelocity mode it tracks velocity_mps in
+// x and y and holds position_m.z(). The heading is always tracked.
+struct GuidanceSetpoint {
+  enum class Mode : uint8_t { kPosition, kVelocity };
+  TimeUs stamp;
+  Mode mode = Mode::kPosition;
+  Eigen::Vector3f position_m = Eigen::Vector3f::Zero();
+  Eigen::Vector3f velocity_mps = Eigen::Vector3f::Zero();
+  float heading_rad = 0;
+};
+
+}  // namespace kestrel
