@@ -179,9 +179,10 @@ GridPose CorrelativeSearch::branch_and_bound() {
   return best;
 }
 
-GridPose CorrelativeSearch::best_at(int k) {
+GridPose CorrelativeSearch::best_at(int k, int seed_tx, int seed_ty) {
   rotate(k);
-  GridPose best;
+  // A real pose of this rotation seeds the search: exact, and it prunes from the start.
+  GridPose best{k, seed_tx, seed_ty, bound(0, seed_tx, seed_ty)};
   dfs(k, bound(top_level_, -half_cells_, -half_cells_), best);
   return best;
 }

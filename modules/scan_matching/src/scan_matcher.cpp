@@ -142,14 +142,14 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   const int k0 = std::max(-half_steps, best.k - r), k1 = std::min(half_steps, best.k + r);
   const int count = k1 - k0 + 1;
   for (int k = k0; k <= k1; ++k) {
-    curve_[static_cast<std::size_t>(k - k0)] = k == best.k ? best.score : search_.best_at(k).score;
+    curve_[static_cast<std::size_t>(k - k0)] = k == best.k ? best.score : search_.best_at(k, best.tx, best.ty).score;
   }
   const int ch = std::min<int>(params_.cov_half_window, kMaxExhaustiveWindow);
   const uint16_t* slice = search_.slice(best.k, best.tx, best.ty, ch);
   const CovarianceEstimate ce = cov_.estimate(slice, ch, curve_.data(), count, best.k - k0, params_.degenerate_ratio);
 
   // Overlap: how many points land where the map expects a surface.
-  int fit = 0;
+  int fit = 0, inside = 0;
   const float th = pred.theta + static_cast<float>(best.k) * params_.angle_step_rad;
   const float c = std::cos(th), s = std::sin(th);
   const float bx = pred.x + static_cast<float>(best.tx) * res, by = pred.y + static_cast<float>(best.ty) * res;
@@ -158,10 +158,16 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
     const float wy = by + s * key_.points.x[i] + c * key_.points.y[i];
     const int cx = static_cast<int>(std::floor((wx - map->origin_x_m()) / res));
     const int cy = static_cast<int>(std::floor((wy - map->origin_y_m()) / res));
+    if (cx < 0 || cy < 0 || cx >= map->dim() || cy >= map->dim()) continue;  // the map cannot judge
+    ++inside;
     fit += map->at(cx, cy) >= kCellMax / 2;
   }
+  // The window follows the vehicle: far from the newest key scan, a new one re-centres it.
+  const float span = static_cast<float>(map->dim()) * res;
+  const float off_x = bx - (map->origin_x_m() + 0.5f * span), off_y = by - (map->origin_y_m() + 0.5f * span);
+  const bool off_centre = std::fabs(off_x) > 0.25f * span || std::fabs(off_y) > 0.25f * span;
   local_.release();
-  out.overlap = static_cast<float>(fit) / static_cast<float>(key_.points.count);
+  out.overlap = inside > 0 ? static_cast<float>(fit) / static_cast<float>(inside) : 0.0f;
 
   const Pose2 pose = params_.subcell_refine
                          ? search_.pose_of(static_cast<float>(best.k) + ce.dk, static_cast<float>(best.tx) + ce.dx,
@@ -175,7 +181,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   out.major_axis_rad = ce.major_axis_rad;
   out.axis_ratio = ce.axis_ratio;
 
-  if (out.overlap < params_.min_overlap) {
+  if (out.overlap < params_.min_overlap || off_centre) {
     key_.pose = pose;
     if (local_.submit(key_)) m.flags |= kKeyScan;
     if (synchronous_) (void)local_.rebuild();

@@ -41,8 +41,9 @@ class CorrelativeSearch {
 
   GridPose exhaustive();
   GridPose branch_and_bound();
-  // Best translation at one rotation, exact (no pruning against other rotations).
-  GridPose best_at(int k);
+  // Best translation at one rotation, exact (no pruning against other rotations); the seed is
+  // any translation inside the window, ideally near the answer.
+  GridPose best_at(int k, int seed_tx = 0, int seed_ty = 0);
   // Score image at rotation k over translations (cx +- half, cy +- half), row-major,
   // (2 half + 1)^2 values, by image addition. half <= kMaxExhaustiveWindow.
   const uint16_t* slice(int k, int cx, int cy, int half);

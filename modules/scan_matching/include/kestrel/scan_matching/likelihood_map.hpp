@@ -119,18 +119,25 @@ class LikelihoodMap {
   LikelihoodKernel kernel_;
 };
 
-// The storage: one fine grid, its pyramid and the list of drawn segments.
+namespace detail {
 template <int Dim, std::size_t MaxSegments>
-class LikelihoodMapStorage final : public LikelihoodMap {
-  static_assert(Dim >= 16 && Dim * kSub < 32768, "segment coordinates are int16 sub-cells");
-
- public:
-  LikelihoodMapStorage() : LikelihoodMap(cells_.data(), Dim, pyramid_.data(), segments_.data(), MaxSegments) {}
-
- private:
+struct MapArrays {
   std::array<uint8_t, static_cast<std::size_t>(Dim) * Dim> cells_{};
   std::array<uint8_t, pyramid_size(Dim)> pyramid_{};
   std::array<MapSegment, MaxSegments> segments_{};
+};
+}  // namespace detail
+
+// The storage: one fine grid, its pyramid and the list of drawn segments. The arrays are a
+// base so they exist before the map that points into them.
+template <int Dim, std::size_t MaxSegments>
+class LikelihoodMapStorage final : private detail::MapArrays<Dim, MaxSegments>, public LikelihoodMap {
+  static_assert(Dim >= 16 && Dim * kSub < 32768, "segment coordinates are int16 sub-cells");
+  using A = detail::MapArrays<Dim, MaxSegments>;
+
+ public:
+  LikelihoodMapStorage()
+      : LikelihoodMap(A::cells_.data(), Dim, A::pyramid_.data(), A::segments_.data(), MaxSegments) {}
 };
 
 }  // namespace kestrel::scan_matching
