@@ -24,6 +24,15 @@ std::vector<benchmark::internal::Benchmark*>& registered() {
   return all;
 }
 
+// With --kestrel_quiet nothing is printed: the console report's text depends on measured
+// times and the machine's load, and formatting it would add a varying number of instructions
+// to each run.
+class SilentReporter : public benchmark::BenchmarkReporter {
+ public:
+  bool ReportContext(const Context&) override { return true; }
+  void ReportRuns(const std::vector<Run>&) override {}
+};
+
 }  // namespace
 
 namespace benchmark::internal {
@@ -44,6 +53,7 @@ Benchmark* RegisterBenchmarkInternal(Benchmark* b) {
 
 int main(int argc, char** argv) {
   long long iterations = 0;
+  bool quiet = false;
   std::vector<char*> rest;
   for (int i = 0; i < argc; ++i) {
     static const char key[] = "--kestrel_iterations=";
@@ -54,12 +64,15 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "kestrel-bench-iters: bad %s\n", argv[i]);
         return 2;
       }
+    } else if (std::strcmp(argv[i], "--kestrel_quiet") == 0) {
+      quiet = true;
     } else {
       rest.push_back(argv[i]);
     }
   }
   if (iterations == 0) {
-    std::fprintf(stderr, "usage: kestrel-bench-iters --kestrel_iterations=N [benchmark flags]\n");
+    std::fprintf(stderr, "usage: kestrel-bench-iters --kestrel_iterations=N [--kestrel_quiet] "
+                 "[benchmark flags]\n");
     return 2;
   }
   for (benchmark::internal::Benchmark* b : registered()) b->Iterations(iterations);
@@ -67,7 +80,9 @@ int main(int argc, char** argv) {
   rest.push_back(nullptr);
   benchmark::Initialize(&n, rest.data());
   if (benchmark::ReportUnrecognizedArguments(n, rest.data())) return 2;
-  const size_t ran = benchmark::RunSpecifiedBenchmarks();
+  SilentReporter silent;
+  const size_t ran =
+      quiet ? benchmark::RunSpecifiedBenchmarks(&silent) : benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return ran == 0 ? 3 : 0;  // a filter matching nothing must not look like a cheap benchmark
 }

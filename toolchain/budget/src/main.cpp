@@ -152,7 +152,8 @@ int run_insns(const Args& a) {
   const auto run = [&](uint64_t n) {
     const CountResult r = count_instructions(
         emu, a.plugin,
-        {m.bench_iters, "--kestrel_iterations=" + std::to_string(n), "--benchmark_filter=" + re},
+        {m.bench_iters, "--kestrel_iterations=" + std::to_string(n), "--kestrel_quiet",
+         "--benchmark_filter=" + re},
         true);
     if (r.exit_status == 3) throw BudgetError("no benchmark named '" + a.bench + "' in kestrel-bench");
     if (r.exit_status != 0) {
@@ -166,18 +167,22 @@ int run_insns(const Args& a) {
   if (c1 == c2) throw BudgetError("no benchmark named '" + a.bench + "' ran (same count twice)");
   const double per = per_iteration(c1, a.n1, c2, a.n2);
   const double share = per / static_cast<double>(budget.loop_cycles);
+  const bool verdex = m.target == "verdex";
   std::cout << std::fixed << std::setprecision(0);
   std::cout << "benchmark " << a.bench << " on " << m.target << " (qemu-arm, kestrel_insn plugin)\n"
             << "  run with " << a.n1 << " iterations: " << c1 << " instructions\n"
             << "  run with " << a.n2 << " iterations: " << c2 << " instructions\n"
             << "  instructions per iteration: " << per << "\n"
-            << std::setprecision(2) << "  at IPC ~= 1 (approximation: in-order "
-            << (m.target == "verdex" ? "XScale" : "Cortex-A8")
-            << "; cache misses and multi-cycle instructions push the true cycle count up, "
-               "dual issue on Cortex-A8 pulls it down): "
+            << "  cycles per iteration at IPC = 1: " << per << " = " << std::setprecision(2)
             << per / static_cast<double>(budget.clock_mhz) << " us at " << budget.clock_mhz
-            << " MHz, " << 100.0 * share << " % of the per-scan loop budget of "
-            << budget.loop_cycles << " cycles\n";
+            << " MHz = " << 100.0 * share << " % of the per-scan loop budget ("
+            << budget.loop_cycles << " cycles)\n"
+            << "  IPC = 1 is an approximation: qemu counts instructions, not cycles. "
+            << (verdex ? "The XScale issues at most one instruction per cycle, so cycles >= "
+                         "instructions; cache misses, multiplies and soft-float calls add more."
+                       : "The Cortex-A8 can dual-issue (fewer cycles) but stalls on cache "
+                         "misses, NEON/VFP hand-offs and branches (more cycles).")
+            << "\n";
   return 0;
 }
 
