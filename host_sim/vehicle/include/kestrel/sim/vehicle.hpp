@@ -47,6 +47,8 @@ class Vehicle {
   Duration step_duration() const { return step_; }
   // Stops the vehicle where it is (after a collision): velocity and acceleration zero.
   void freeze();
+  // Advances time by one step without moving (a frozen vehicle after the flight ended).
+  void idle_step() { s_.stamp += step_; }
 
  private:
   VehicleParams p_;
