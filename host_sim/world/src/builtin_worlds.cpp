@@ -48,7 +48,7 @@ wall 22 11 22 13 z=0:1.0 railing=0.3
 wall 22 13 19 13 z=0:1.0 railing=0.3
 box 27 13 1.6 0.8 z=0:0.75
 # hallway: a column and a low bench
-pillar 15 7.9 0.25
+pillar 15 8.65 0.2
 box 20 8.6 1.5 0.4 z=0:0.45
 room hallway 0 6 30 6 30 9 0 9
 room room-A 0 0 15 0 15 6 0 6
