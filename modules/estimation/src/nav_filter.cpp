@@ -25,6 +25,7 @@ Status NavFilter::set_params(const EkfParams& params) {
 void NavFilter::reset() {
   first_ = count_ = 0;
   log_first_ = log_count_ = 0;
+  initialised_ = false;
   cur_ = Filters{};
   attitude_ = Input{};
   frame_correction_ = Pose2{};
@@ -41,23 +42,39 @@ void NavFilter::set_attitude(const FlightStatus& status) {
 }
 
 void NavFilter::initialise(TimeUs t, const Pose2& pose) {
-  first_ = count_ = 0;
-  log_first_ = log_count_ = 0;
   Filters f;
   const float pos[3] = {pose.x, pose.y, have_height_ ? last_height_ : 0.0f};
   for (std::size_t i = 0; i < 3; ++i) {
     f.ax[i].x << pos[i], 0.0f, 0.0f;
     f.ax[i].P = Eigen::Vector3f(params_.init_pos_var, params_.init_vel_var, params_.init_accel_bias_var).asDiagonal();
   }
+  f.height_known = have_height_;
   f.hd.x << pose.theta, 0.0f;
   f.hd.P = Eigen::Vector2f(params_.init_heading_var, params_.init_gyro_bias_var).asDiagonal();
-  Slot& s = slots_[0];
-  s.t = t;
-  s.in = attitude_;
-  s.in.accel = Eigen::Vector3f(0.0f, 0.0f, params_.gravity_mps2);
-  s.prior = f;
-  count_ = 1;
-  cur_ = f;
+  log_first_ = log_count_ = 0;
+  initialised_ = true;
+  if (count_ == 0 || t < slot(0).t) {
+    // No stored input covers the pose's time: start the history at it.
+    first_ = 0;
+    count_ = 1;
+    Slot& s = slots_[0];
+    s.t = t;
+    s.in = attitude_;
+    s.in.accel = Eigen::Vector3f(0.0f, 0.0f, params_.gravity_mps2);
+    s.prior = f;
+    cur_ = f;
+    return;
+  }
+  // IMU samples stored before the first pose: start at the slot of the pose's time and
+  // propagate through the later ones, so the first pose is handled like a late measurement.
+  const std::size_t k = slot_at(t);
+  first_ = (first_ + k) % kHistory;
+  count_ -= k;
+  slot(0).prior = f;
+  for (std::size_t i = 1; i < count_; ++i) {
+    propagate(slot(i - 1).prior, slot(i).prior, slot(i).in, static_cast<float>((slot(i).t - slot(i - 1).t).seconds()));
+  }
+  cur_ = slot(count_ - 1).prior;
 }
 
 void NavFilter::propagate(const Filters& from, Filters& to, const Input& in, float dt) const {
@@ -104,18 +121,28 @@ Status NavFilter::predict(const ImuSample& imu) {
     ++counters_.imu_time_backwards;
     return Status::kTimeJump;
   }
-  if (initialised() && imu.stamp <= slot(count_ - 1).t) {
+  if (count_ > 0 && imu.stamp <= slot(count_ - 1).t) {
     // Before the time the first pose set: the step would run backwards.
     ++counters_.imu_time_backwards;
     return Status::kTimeJump;
   }
   have_imu_ = true;
   last_imu_t_ = imu.stamp;
-  if (!initialised()) return Status::kNoData;
-
   Input in = attitude_;
   in.accel = imu.accel_mps2;
   in.gyro_z = imu.gyro_radps.z();
+  if (!initialised_) {
+    // Keep the inputs: the first pose may be stamped before this sample.
+    if (count_ > 0 && (imu.stamp - slot(count_ - 1).t).seconds() > params_.max_imu_gap_s) count_ = 0;
+    if (count_ == kHistory) {
+      first_ = (first_ + 1) % kHistory;
+      --count_;
+    }
+    slot(count_).t = imu.stamp;
+    slot(count_).in = in;
+    ++count_;
+    return Status::kNoData;
+  }
   const float dt = static_cast<float>((imu.stamp - slot(count_ - 1).t).seconds());
   if (dt > params_.max_imu_gap_s) {
     // Coast over the gap at constant velocity (no trustworthy input), then restart the
@@ -160,8 +187,8 @@ Status NavFilter::update_pose(const PoseMeasurement2& meas) {
     return Status::kInvalidArgument;
   }
   const Pose2 w = frame_correction_.compose(meas.pose);
-  if (!initialised()) {
-    initialise(have_imu_ ? last_imu_t_ : meas.stamp, w);
+  if (!initialised_) {
+    initialise(meas.stamp, w);
     ++counters_.pose_updates;
     return Status::kOk;
   }
@@ -194,7 +221,7 @@ Status NavFilter::update_altitude(const AltimeterSample& meas) {
     ++counters_.meas_not_finite;
     return Status::kInvalidArgument;
   }
-  if (!initialised()) {
+  if (!initialised_) {
     have_height_ = true;
     last_height_ = meas.height_m;
     return Status::kNoData;
@@ -212,7 +239,7 @@ Status NavFilter::apply_correction(const PoseMeasurement2& slam_pose) {
     ++counters_.meas_not_finite;
     return Status::kNotFinite;
   }
-  if (!initialised()) return Status::kNoData;
+  if (!initialised_) return Status::kNoData;
   Entry e;
   e.t = slam_pose.stamp;
   e.kind = Kind::kCorrection;
@@ -392,6 +419,17 @@ Status NavFilter::apply_pose(Filters& f, const Entry& e, float delta, bool count
 }
 
 Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool count) {
+  if (!f.height_known) {
+    // The first height sets the vertical position outright (no gate: nothing to compare with).
+    AxisState& a = f.ax[2];
+    a.x(0) = e.z(0) - delta * a.x(1);
+    a.P.row(0).setZero();
+    a.P.col(0).setZero();
+    a.P(0, 0) = e.R(0, 0);
+    f.height_known = true;
+    if (count) ++counters_.altitude_updates;
+    return Status::kOk;
+  }
   const ScalarInnovation iz = axis_position_innovation(f.ax[2], e.z(0), e.R(0, 0), delta);
   if (!(iz.s > 0.0f) || !(iz.nu * iz.nu <= params_.altitude_gate_chi2 * iz.s)) {
     if (count) ++counters_.altitude_rejected;
@@ -404,7 +442,7 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
 
 NavState NavFilter::state() const {
   NavState n;
-  if (!initialised()) return n;
+  if (!initialised_) return n;
   n.stamp = slot(count_ - 1).t;
   for (int i = 0; i < 3; ++i) {
     const AxisState& a = cur_.ax[static_cast<std::size_t>(i)];

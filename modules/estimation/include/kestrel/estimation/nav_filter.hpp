@@ -102,7 +102,7 @@ class NavFilter {
   Status apply_correction(const PoseMeasurement2& slam_pose);
 
   NavState state() const;
-  bool initialised() const { return count_ > 0; }
+  bool initialised() const { return initialised_; }
   const NavFilterCounters& counters() const { return counters_; }
   Pose2 frame_correction() const { return frame_correction_; }
   const AxisState& axis(int i) const { return cur_.ax[static_cast<std::size_t>(i)]; }
@@ -115,6 +115,7 @@ class NavFilter {
     HeadingState hd;
     Eigen::Vector3f accel_world = Eigen::Vector3f::Zero();  // last input minus bias, m/s^2
     float yaw_rate = 0;                                     // last gyro minus bias, rad/s
+    bool height_known = false;  // false until the first altimeter sample
   };
   struct Input {
     Eigen::Vector3f accel = Eigen::Vector3f::Zero();  // body specific force of the sample
@@ -162,6 +163,7 @@ class NavFilter {
   Filters cur_;  // posterior at the newest slot
   Input attitude_;
   Pose2 frame_correction_;
+  bool initialised_ = false;
   bool have_imu_ = false;
   TimeUs last_imu_t_;
   bool have_height_ = false;
