@@ -35,6 +35,10 @@
 // through frame_correction() (the accumulated D), so the present state moves by D while the
 // local, scan-matcher-driven estimate stays smooth. Covariances are left as they are.
 //
+// Start: IMU samples before the first pose are stored (kNoData); the first pose initialises
+// the state at its own stamp and propagates through the stored samples after it; the first
+// altimeter sample sets the height outright.
+//
 // Bad inputs: non-finite samples (kNotFinite), IMU time going backwards (kTimeJump, sample
 // dropped), an IMU gap above max_imu_gap_s (kTimeJump: coasts at constant velocity over the
 // gap and restarts the history), gated measurements (kRejected). Each is counted.
