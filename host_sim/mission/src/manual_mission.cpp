@@ -12,9 +12,10 @@ Status ManualMission::start(Simulation& sim) {
 }
 
 MissionState ManualMission::tick(Simulation& sim) {
-  const double t = sim.clock().now().seconds();
+  // Compare in whole microseconds: a script time must switch at exactly one tick.
+  const TimeUs t = sim.clock().now();
   hal::FlightController& fc = sim.flight_controller();
-  while (next_ < script_.steps.size() && script_.steps[next_].t_s <= t) {
+  while (next_ < script_.steps.size() && TimeUs::from_s(script_.steps[next_].t_s) <= t) {
     const ScriptStep& st = script_.steps[next_++];
     if (st.disarm) {
       (void)fc.arm(false);

@@ -15,7 +15,9 @@ RunResult run_mission(Simulation& sim, Mission& mission, Duration duration,
   const TimeUs stop = start + duration;
   const Duration tick = mission.tick_period().us > 0 ? mission.tick_period() : Duration::from_ms(10);
   TimeUs next_progress = start + Duration::from_s(1.0);
-  while (sim.now() < stop) {
+  // The first tick is at the start time, then one every tick period after each step.
+  r.state = mission.tick(sim);
+  while (r.state == MissionState::kRunning && sim.now() < stop) {
     TimeUs next = sim.now() + tick;
     if (next > stop) next = stop;
     (void)sim.step_until(next);

@@ -7,6 +7,7 @@ namespace kestrel::sim {
 
 RayCaster::RayCaster(const World& world, double cell_m)
     : grid_(world.segments(), cell_m), ceiling_(world.ceiling_m) {
+  for (const Obstacle& o : world.obstacles) polygons_.push_back(o.polygon);
   seen_.assign(grid_.segments().size(), 0);
 }
 
@@ -96,7 +97,27 @@ RayHit RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir
       const double w = (d.x() * u.y() - d.y() * u.x()) / den;
       if (s <= 1e-9 || w < 0 || w > 1 || s >= best_s || s > s_limit) continue;
       const double z = z0 + slope * s;
-      if (z < sg.z_min || z > sg.z_max) continue;  // the beam passes over or under
+      if (z < sg.z_min || z > sg.z_max) {
+        // Over or under this face. Entering an obstacle's footprint (CCW polygon: the beam
+        // runs against the edge's outward normal (e.y, -e.x)) it may still meet the top
+        // or bottom face further in.
+        if (sg.obstacle < 0 || sg.material == Material::kGlass) continue;
+        if (u.x() * e.y() - u.y() * e.x() >= 0) continue;  // leaving, not entering
+        double s_face = -1;
+        if (z > sg.z_max && slope < 0) s_face = (sg.z_max - z0) / slope;
+        if (z < sg.z_min && slope > 0) s_face = (sg.z_min - z0) / slope;
+        if (s_face < s || s_face >= best_s || s_face > s_limit) continue;
+        if (!point_in_polygon(polygons_[static_cast<std::size_t>(sg.obstacle)], p + u * s_face)) continue;
+        if (sg.material == Material::kRailing) {
+          const bool returns = railing_rng ? railing_rng->bernoulli(sg.return_probability)
+                                           : sg.return_probability >= 0.5;
+          if (!returns) continue;
+        }
+        best_s = s_face;
+        hit.segment = static_cast<int>(*it);
+        hit.material = sg.material;
+        continue;
+      }
       if (sg.material == Material::kGlass) continue;
       if (sg.material == Material::kRailing) {
         const bool returns = railing_rng ? railing_rng->bernoulli(sg.return_probability)

@@ -17,14 +17,15 @@ std::vector<Segment> World::segments() const {
   std::vector<Segment> out;
   int piece = 0;
   for (const Wall& w : walls) {
-    out.push_back({w.a, w.b, w.z_min, w.z_max, w.material, w.return_probability, piece});
+    out.push_back({w.a, w.b, w.z_min, w.z_max, w.material, w.return_probability, piece, -1});
     ++piece;
   }
-  for (const Obstacle& o : obstacles) {
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    const Obstacle& o = obstacles[k];
     const std::size_t n = o.polygon.size();
     for (std::size_t i = 0; i < n; ++i) {
       out.push_back({o.polygon[i], o.polygon[(i + 1) % n], o.z_min, o.z_max, o.material,
-                     o.return_probability, piece});
+                     o.return_probability, piece, static_cast<int>(k)});
     }
     ++piece;
   }

@@ -28,7 +28,8 @@ class Mission {
   virtual const char* name() const = 0;
   // Called once at t = 0, before the first tick; an error aborts the run.
   virtual Status start(Simulation& sim) = 0;
-  // Called every tick_period() of simulated time after the world has been stepped to now.
+  // Called at the start time and then every tick_period() of simulated time, each time after
+  // the world has been stepped to now.
   virtual MissionState tick(Simulation& sim) = 0;
   virtual Duration tick_period() const { return Duration::from_ms(10); }
   // Mission-specific metrics, appended to the run's metrics.

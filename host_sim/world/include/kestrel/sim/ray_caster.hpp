@@ -7,9 +7,12 @@
 // Steps per beam: project the ray onto the floor plane; walk the uniform grid of segments
 // along that projection (Amanatides-Woo DDA); intersect each listed segment exactly (2D
 // line-segment intersection), keeping a hit only if the ray's height there lies inside the
-// segment's [z_min, z_max]; glass lets the beam pass, a railing returns it with its
-// probability; stop once the nearest hit lies inside the current cell. Floor (z = 0) and
-// ceiling returns end the walk early.
+// segment's [z_min, z_max]; a beam entering an obstacle's footprint above its top (or below
+// its bottom) hits the top (bottom) face if it crosses that plane inside the footprint;
+// glass lets the beam pass, a railing returns it with its probability; stop once the nearest
+// hit lies inside the current cell. Floor (z = 0) and ceiling returns end the walk early.
+// Limitation: a beam starting above an obstacle's footprint (the vehicle right over a table)
+// does not see that obstacle's top.
 #include <cstdint>
 #include <vector>
 
@@ -41,6 +44,7 @@ class RayCaster {
 
  private:
   SegmentGrid grid_;
+  std::vector<std::vector<Eigen::Vector2d>> polygons_;  // World::obstacles' footprints
   double ceiling_;
   std::vector<uint32_t> seen_;
   uint32_t stamp_ = 0;

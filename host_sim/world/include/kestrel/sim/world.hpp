@@ -22,6 +22,7 @@ struct Segment {
   Material material = Material::kOpaque;
   double return_probability = 1;  // per beam, for kRailing
   int piece = 0;                  // index into World::pieces() (walls first, then obstacles)
+  int obstacle = -1;              // index into World::obstacles for an obstacle edge, else -1
 };
 
 struct Wall {
