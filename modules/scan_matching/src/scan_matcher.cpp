@@ -109,6 +109,11 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
     pred.theta = wrap_angle(pred.theta + wrap_angle(last_pose_.theta - prev_pose_.theta) * f);
   }
   const float res = map->resolution_m();
+  // The search grid is the map's grid (and whole angle steps): a vehicle that holds still gets
+  // the same answer scan after scan instead of one that wanders inside a cell.
+  pred.x = map->origin_x_m() + std::round((pred.x - map->origin_x_m()) / res) * res;
+  pred.y = map->origin_y_m() + std::round((pred.y - map->origin_y_m()) / res) * res;
+  pred.theta = wrap_angle(std::round(pred.theta / params_.angle_step_rad) * params_.angle_step_rad);
   const float win_m = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
   const float win_rad = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
   int half_cells = static_cast<int>(ceil_div(win_m, res));
