@@ -1,6 +1,8 @@
 // kestrel-budget: memory and timing budget report for the cross-built firmware (DESIGN.md,
 // "Budgets"). Exit status: 0 within budget, 1 a limit exceeded (each named), 2 bad input
 // (unreadable or malformed file, bad command line).
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -105,9 +107,20 @@ BudgetFile budget_of(const Args& a, const Manifest& m) {
   return load_budget_file(path);
 }
 
+// Missing inputs mean the ARM tree was configured but not built: say how to build them.
+void require_built(const Manifest& m, const std::string& path) {
+  if (access(path.c_str(), R_OK) != 0) {
+    const std::string dir = m.path.substr(0, m.path.rfind('/'));
+    throw BudgetError(path + " is missing; build it first: cmake --build " + dir +
+                      " --target kestrel-budget-inputs");
+  }
+}
+
 int run_report(const Args& a) {
   const Manifest m = manifest_of(a);
   const BudgetFile budget = budget_of(a, m);
+  for (const ManifestLibrary& lib : m.libraries) require_built(m, lib.archive);
+  for (const auto& exe : m.executables) require_built(m, exe.second);
   std::vector<LibraryReport> libs;
   for (const ManifestLibrary& lib : m.libraries) libs.push_back(measure_library(lib));
   std::vector<ExecutableReport> exes;
@@ -141,6 +154,7 @@ int run_insns(const Args& a) {
   const Manifest m = manifest_of(a);
   const BudgetFile budget = budget_of(a, m);
   if (m.bench_iters.empty()) throw BudgetError(m.path + ": no bench_iters runner listed");
+  require_built(m, m.bench_iters);
   const std::vector<std::string> emu = m.emulator.empty() ? default_emulator() : m.emulator;
   // The name is matched exactly: a regex anchored at both ends, special characters escaped.
   std::string re = "^";
