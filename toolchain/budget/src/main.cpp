@@ -126,6 +126,15 @@ int run_report(const Args& a) {
   std::vector<ExecutableReport> exes;
   for (const auto& [name, path] : m.executables) exes.push_back(measure_executable(name, path));
   print_report(std::cout, m.target, budget, libs, exes, a.top);
+  if (budget.target != m.target) {
+    std::cout << "\nnote: budget file is for '" << budget.target << "', build tree is '"
+              << m.target << "'\n";
+  }
+  for (const auto& [name, limits] : budget.libraries) {
+    bool built = false;
+    for (const LibraryReport& lib : libs) built = built || lib.name == name;
+    if (!built) std::cout << "note: budget file lists '" << name << "', not in this build\n";
+  }
   const std::vector<Violation> v = check_budget(budget, libs, exes, "kestrel-fw");
   if (v.empty()) {
     std::cout << "\nwithin budget (" << budget.target << ")\n";
