@@ -1,4 +1,6 @@
 // The build-tree manifest CMake writes for kestrel-budget.
+#include "kestrel/budget/manifest.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -6,7 +8,6 @@
 #include <string>
 
 #include "kestrel/budget/error.hpp"
-#include "kestrel/budget/manifest.hpp"
 
 namespace kb = kestrel::budget;
 
@@ -45,9 +46,9 @@ TEST(BudgetManifest, ReadsEveryEntry) {
 }
 
 TEST(BudgetManifest, MalformedManifestsAreErrors) {
-  for (const char* text : {"budget\t/b.txt\n",                      // no target
-                           "target\tovero\nlibrary\tx\t/x.a\n",     // missing field
-                           "target\tovero\nwhatever\t1\n",          // unknown entry
+  for (const char* text : {"budget\t/b.txt\n",                   // no target
+                           "target\tovero\nlibrary\tx\t/x.a\n",  // missing field
+                           "target\tovero\nwhatever\t1\n",       // unknown entry
                            "target\tovero\textra\n"}) {
     const std::string p = write_temp(text);
     EXPECT_THROW(kb::load_manifest(p), kb::BudgetError) << text;

@@ -127,8 +127,8 @@ int run_report(const Args& a) {
   for (const auto& [name, path] : m.executables) exes.push_back(measure_executable(name, path));
   print_report(std::cout, m.target, budget, libs, exes, a.top);
   if (budget.target != m.target) {
-    std::cout << "\nnote: budget file is for '" << budget.target << "', build tree is '"
-              << m.target << "'\n";
+    std::cout << "\nnote: budget file is for '" << budget.target << "', build tree is '" << m.target
+              << "'\n";
   }
   for (const auto& [name, limits] : budget.libraries) {
     bool built = false;
@@ -173,12 +173,13 @@ int run_insns(const Args& a) {
   }
   re += "(/iterations:[0-9]+)?$";  // a fixed count adds this suffix to the name
   const auto run = [&](uint64_t n) {
-    const CountResult r = count_instructions(
-        emu, a.plugin,
-        {m.bench_iters, "--kestrel_iterations=" + std::to_string(n), "--kestrel_quiet",
-         "--benchmark_filter=" + re},
-        true);
-    if (r.exit_status == 3) throw BudgetError("no benchmark named '" + a.bench + "' in kestrel-bench");
+    const CountResult r =
+        count_instructions(emu, a.plugin,
+                           {m.bench_iters, "--kestrel_iterations=" + std::to_string(n),
+                            "--kestrel_quiet", "--benchmark_filter=" + re},
+                           true);
+    if (r.exit_status == 3)
+      throw BudgetError("no benchmark named '" + a.bench + "' in kestrel-bench");
     if (r.exit_status != 0) {
       throw BudgetError(m.bench_iters + " exited with status " + std::to_string(r.exit_status) +
                         " (build it: cmake --build <dir> --target kestrel-bench-iters)");
