@@ -1,7 +1,8 @@
 // Budget-file parsing and the checks that turn measurements into named violations.
+#include "kestrel/budget/budget_file.hpp"
+
 #include <gtest/gtest.h>
 
-#include "kestrel/budget/budget_file.hpp"
 #include "kestrel/budget/error.hpp"
 #include "kestrel/budget/size_report.hpp"
 
@@ -51,15 +52,15 @@ TEST(BudgetFile, ParsesValuesUnitsAndPerLibraryOverrides) {
 
 TEST(BudgetFile, MalformedFilesAreErrorsWithTheLine) {
   const char* bad[] = {
-      "target overo\nclock_mhz 720\nloop_cycles 9M\n",  // no default line
-      "clock_mhz 720\nloop_cycles 9M\ndefault ram 1MiB\n",  // no target
-      "target o\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1 MiB\n",  // odd pairs
-      "target o\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1GiB\n",  // unknown unit
-      "target o\nclock_mhz 720\nloop_cycles 9M\ndefault heap 1MiB\n",  // unknown limit
+      "target overo\nclock_mhz 720\nloop_cycles 9M\n",                         // no default line
+      "clock_mhz 720\nloop_cycles 9M\ndefault ram 1MiB\n",                     // no target
+      "target o\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1 MiB\n",          // odd pairs
+      "target o\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1GiB\n",           // unknown unit
+      "target o\nclock_mhz 720\nloop_cycles 9M\ndefault heap 1MiB\n",          // unknown limit
       "target o\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1MiB ram 2MiB\n",  // twice
-      "target o\nclock_mhz 720\nloop_cycles nine\ndefault ram 1MiB\n",  // not a number
+      "target o\nclock_mhz 720\nloop_cycles nine\ndefault ram 1MiB\n",         // not a number
       "target o\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1MiB\nspeed 3\n",  // unknown key
-      "target o p\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1MiB\n",  // two values
+      "target o p\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1MiB\n",         // two values
       "target o\nclock_mhz 720\nloop_cycles 9M\ndefault ram 99999999999999999999\n",  // overflow
       "target o\nclock_mhz 720\nloop_cycles 9M\ndefault ram 1MiB\nlibrary a ram 1KiB\n"
       "library a ram 2KiB\n",  // library twice
@@ -94,7 +95,8 @@ TEST(BudgetFile, EveryExceededLimitIsNamedAndLimitsAreInclusive) {
   // Whole firmware: the sum of the libraries, or the linked firmware when present.
   libs = {lib("kestrel_a", 0, 0, 1000 * 1024, 0), lib("kestrel_b", 0, 0, 1000 * 1024, 0),
           lib("kestrel_c", 0, 0, 1000 * 1024, 0)};
-  for (int i = 0; i < 14; ++i) libs.push_back(lib("kestrel_m" + std::to_string(i), 0, 0, 1000 * 1024, 0));
+  for (int i = 0; i < 14; ++i)
+    libs.push_back(lib("kestrel_m" + std::to_string(i), 0, 0, 1000 * 1024, 0));
   v = kb::check_budget(b, libs, {}, "kestrel-fw");
   ASSERT_EQ(v.size(), 1u);
   EXPECT_NE(v[0].what.find("firmware static RAM (sum of libraries)"), std::string::npos);

@@ -112,3 +112,16 @@ TEST(BudgetElfAr, StackUsagePathFollowsGccNaming) {
   EXPECT_EQ(kb::stack_usage_path("a/b.dir/src/x.cpp.o"), "a/b.dir/src/x.cpp.su");
   EXPECT_EQ(kb::stack_usage_path("a.b/x"), "a.b/x.su");
 }
+
+#ifdef BUDGET_ARM_INSN_LOOP
+TEST(BudgetElfAr, LinkedArmExecutableIsMeasured) {
+  const kb::ExecutableReport e = kb::measure_executable("insn_loop", BUDGET_ARM_INSN_LOOP);
+  EXPECT_GT(e.sizes.code, 0u);
+  EXPECT_GT(e.sizes.rodata, 0u);  // at least the dynamic-linking tables
+  EXPECT_GT(e.sizes.data, 0u);    // at least the GOT
+  const kb::ElfInfo info =
+      kb::parse_elf(kb::read_file_bytes(BUDGET_ARM_INSN_LOOP), BUDGET_ARM_INSN_LOOP);
+  EXPECT_EQ(info.machine, 40);
+  EXPECT_FALSE(info.is_64);
+}
+#endif

@@ -1,8 +1,9 @@
 // The QEMU instruction counter on an ARM program whose loop is exactly two instructions.
+#include "kestrel/budget/insn_counter.hpp"
+
 #include <gtest/gtest.h>
 
 #include "kestrel/budget/error.hpp"
-#include "kestrel/budget/insn_counter.hpp"
 
 namespace kb = kestrel::budget;
 
@@ -16,10 +17,10 @@ TEST(BudgetInsnCounter, DifferenceQuotientCancelsFixedCost) {
 TEST(BudgetInsnCounter, CountsExactlyTwoInstructionsPerLoopIteration) {
   // Same number of digits in both runs, so parsing the argument costs the same.
   const std::vector<std::string> qemu = {"qemu-arm", "-L", "/"};
-  const kb::CountResult a = kb::count_instructions(qemu, BUDGET_INSN_PLUGIN,
-                                                   {BUDGET_ARM_INSN_LOOP, "0001000"}, true);
-  const kb::CountResult b = kb::count_instructions(qemu, BUDGET_INSN_PLUGIN,
-                                                   {BUDGET_ARM_INSN_LOOP, "0051000"}, true);
+  const kb::CountResult a =
+      kb::count_instructions(qemu, BUDGET_INSN_PLUGIN, {BUDGET_ARM_INSN_LOOP, "0001000"}, true);
+  const kb::CountResult b =
+      kb::count_instructions(qemu, BUDGET_INSN_PLUGIN, {BUDGET_ARM_INSN_LOOP, "0051000"}, true);
   EXPECT_EQ(a.exit_status, 0);
   EXPECT_EQ(b.exit_status, 0);
   EXPECT_GT(a.insns, 2000u);  // loader and libc start-up come on top of the loop
@@ -29,9 +30,9 @@ TEST(BudgetInsnCounter, CountsExactlyTwoInstructionsPerLoopIteration) {
 
 TEST(BudgetInsnCounter, MissingProgramOrPluginIsAnError) {
   const std::vector<std::string> qemu = {"qemu-arm", "-L", "/"};
-  EXPECT_THROW(kb::count_instructions(qemu, "/nonexistent/libplugin.so",
-                                      {BUDGET_ARM_INSN_LOOP, "1"}, true),
-               kb::BudgetError);
+  EXPECT_THROW(
+      kb::count_instructions(qemu, "/nonexistent/libplugin.so", {BUDGET_ARM_INSN_LOOP, "1"}, true),
+      kb::BudgetError);
   EXPECT_THROW(kb::count_instructions({"/nonexistent/qemu"}, BUDGET_INSN_PLUGIN,
                                       {BUDGET_ARM_INSN_LOOP, "1"}, true),
                kb::BudgetError);

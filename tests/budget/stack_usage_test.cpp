@@ -1,8 +1,9 @@
 // Parsing GCC -fstack-usage lines.
+#include "kestrel/budget/stack_usage.hpp"
+
 #include <gtest/gtest.h>
 
 #include "kestrel/budget/error.hpp"
-#include "kestrel/budget/stack_usage.hpp"
 
 namespace kb = kestrel::budget;
 

@@ -71,7 +71,8 @@ int main(int argc, char** argv) {
     }
   }
   if (iterations == 0) {
-    std::fprintf(stderr, "usage: kestrel-bench-iters --kestrel_iterations=N [--kestrel_quiet] "
+    std::fprintf(stderr,
+                 "usage: kestrel-bench-iters --kestrel_iterations=N [--kestrel_quiet] "
                  "[benchmark flags]\n");
     return 2;
   }

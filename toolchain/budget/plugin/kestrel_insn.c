@@ -47,8 +47,8 @@ static char out_path[4096];
 
 static void on_tb_translate(qemu_plugin_id_t id, struct qemu_plugin_tb* tb) {
   (void)id;
-  qemu_plugin_register_vcpu_tb_exec_inline(tb, KESTREL_QEMU_PLUGIN_INLINE_ADD_U64,
-                                           &insn_count, qemu_plugin_tb_n_insns(tb));
+  qemu_plugin_register_vcpu_tb_exec_inline(tb, KESTREL_QEMU_PLUGIN_INLINE_ADD_U64, &insn_count,
+                                           qemu_plugin_tb_n_insns(tb));
 }
 
 static void on_exit(qemu_plugin_id_t id, void* userdata) {

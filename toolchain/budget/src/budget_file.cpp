@@ -15,20 +15,24 @@ uint64_t number_with_suffix(std::string_view token, const std::string& what,
   size_t digits = 0;
   uint64_t v = 0;
   while (digits < token.size() && token[digits] >= '0' && token[digits] <= '9') {
-    if (v > UINT64_MAX / 10 - 1) throw BudgetError(what + ": number too large: " + std::string(token));
+    if (v > UINT64_MAX / 10 - 1)
+      throw BudgetError(what + ": number too large: " + std::string(token));
     v = v * 10 + static_cast<uint64_t>(token[digits] - '0');
     ++digits;
   }
-  if (digits == 0) throw BudgetError(what + ": expected a " + kind + ", got '" + std::string(token) + "'");
+  if (digits == 0)
+    throw BudgetError(what + ": expected a " + kind + ", got '" + std::string(token) + "'");
   const std::string_view unit = token.substr(digits);
   if (unit.empty()) return v;
   for (const auto& [name, scale] : units) {
     if (unit == name) {
-      if (v > UINT64_MAX / scale) throw BudgetError(what + ": number too large: " + std::string(token));
+      if (v > UINT64_MAX / scale)
+        throw BudgetError(what + ": number too large: " + std::string(token));
       return v * scale;
     }
   }
-  throw BudgetError(what + ": unknown unit '" + std::string(unit) + "' in '" + std::string(token) + "'");
+  throw BudgetError(what + ": unknown unit '" + std::string(unit) + "' in '" + std::string(token) +
+                    "'");
 }
 
 LibraryLimits parse_limits(const std::vector<std::string>& words, size_t first,
@@ -45,7 +49,8 @@ LibraryLimits parse_limits(const std::vector<std::string>& words, size_t first,
                                     : key == "ram"    ? &l.ram
                                     : key == "stack"  ? &l.stack
                                                       : nullptr;
-    if (slot == nullptr) throw BudgetError(where + ": unknown limit '" + key + "' (code, rodata, ram, stack)");
+    if (slot == nullptr)
+      throw BudgetError(where + ": unknown limit '" + key + "' (code, rodata, ram, stack)");
     if (slot->has_value()) throw BudgetError(where + ": limit '" + key + "' given twice");
     *slot = v;
   }
@@ -107,7 +112,8 @@ BudgetFile parse_budget_file(std::string_view text, const std::string& what) {
       have_defaults = true;
     } else if (key == "library") {
       if (w.size() < 2) throw BudgetError(where + ": 'library' needs a name");
-      if (b.libraries.count(w[1])) throw BudgetError(where + ": library '" + w[1] + "' listed twice");
+      if (b.libraries.count(w[1]))
+        throw BudgetError(where + ": library '" + w[1] + "' listed twice");
       b.libraries[w[1]] = parse_limits(w, 2, where);
     } else {
       throw BudgetError(where + ": unknown key '" + key + "'");

@@ -90,8 +90,9 @@ CountResult count_instructions(const std::vector<std::string>& emulator, const s
 double per_iteration(uint64_t count1, uint64_t n1, uint64_t count2, uint64_t n2) {
   if (n2 <= n1) throw BudgetError("the second iteration count must be larger than the first");
   if (count2 < count1) {
-    throw BudgetError("more iterations executed fewer instructions: the program does not run "
-                      "a fixed number of iterations");
+    throw BudgetError(
+        "more iterations executed fewer instructions: the program does not run "
+        "a fixed number of iterations");
   }
   return static_cast<double>(count2 - count1) / static_cast<double>(n2 - n1);
 }

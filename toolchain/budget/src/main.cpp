@@ -1,6 +1,8 @@
 // kestrel-budget: memory and timing budget report for the cross-built firmware (DESIGN.md,
 // "Budgets"). Exit status: 0 within budget, 1 a limit exceeded (each named), 2 bad input
 // (unreadable or malformed file, bad command line).
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -105,14 +107,34 @@ BudgetFile budget_of(const Args& a, const Manifest& m) {
   return load_budget_file(path);
 }
 
+// Missing inputs mean the ARM tree was configured but not built: say how to build them.
+void require_built(const Manifest& m, const std::string& path) {
+  if (access(path.c_str(), R_OK) != 0) {
+    const std::string dir = m.path.substr(0, m.path.rfind('/'));
+    throw BudgetError(path + " is missing; build it first: cmake --build " + dir +
+                      " --target kestrel-budget-inputs");
+  }
+}
+
 int run_report(const Args& a) {
   const Manifest m = manifest_of(a);
   const BudgetFile budget = budget_of(a, m);
+  for (const ManifestLibrary& lib : m.libraries) require_built(m, lib.archive);
+  for (const auto& exe : m.executables) require_built(m, exe.second);
   std::vector<LibraryReport> libs;
   for (const ManifestLibrary& lib : m.libraries) libs.push_back(measure_library(lib));
   std::vector<ExecutableReport> exes;
   for (const auto& [name, path] : m.executables) exes.push_back(measure_executable(name, path));
   print_report(std::cout, m.target, budget, libs, exes, a.top);
+  if (budget.target != m.target) {
+    std::cout << "\nnote: budget file is for '" << budget.target << "', build tree is '" << m.target
+              << "'\n";
+  }
+  for (const auto& [name, limits] : budget.libraries) {
+    bool built = false;
+    for (const LibraryReport& lib : libs) built = built || lib.name == name;
+    if (!built) std::cout << "note: budget file lists '" << name << "', not in this build\n";
+  }
   const std::vector<Violation> v = check_budget(budget, libs, exes, "kestrel-fw");
   if (v.empty()) {
     std::cout << "\nwithin budget (" << budget.target << ")\n";
@@ -141,6 +163,7 @@ int run_insns(const Args& a) {
   const Manifest m = manifest_of(a);
   const BudgetFile budget = budget_of(a, m);
   if (m.bench_iters.empty()) throw BudgetError(m.path + ": no bench_iters runner listed");
+  require_built(m, m.bench_iters);
   const std::vector<std::string> emu = m.emulator.empty() ? default_emulator() : m.emulator;
   // The name is matched exactly: a regex anchored at both ends, special characters escaped.
   std::string re = "^";
@@ -150,12 +173,13 @@ int run_insns(const Args& a) {
   }
   re += "(/iterations:[0-9]+)?$";  // a fixed count adds this suffix to the name
   const auto run = [&](uint64_t n) {
-    const CountResult r = count_instructions(
-        emu, a.plugin,
-        {m.bench_iters, "--kestrel_iterations=" + std::to_string(n), "--kestrel_quiet",
-         "--benchmark_filter=" + re},
-        true);
-    if (r.exit_status == 3) throw BudgetError("no benchmark named '" + a.bench + "' in kestrel-bench");
+    const CountResult r =
+        count_instructions(emu, a.plugin,
+                           {m.bench_iters, "--kestrel_iterations=" + std::to_string(n),
+                            "--kestrel_quiet", "--benchmark_filter=" + re},
+                           true);
+    if (r.exit_status == 3)
+      throw BudgetError("no benchmark named '" + a.bench + "' in kestrel-bench");
     if (r.exit_status != 0) {
       throw BudgetError(m.bench_iters + " exited with status " + std::to_string(r.exit_status) +
                         " (build it: cmake --build <dir> --target kestrel-bench-iters)");

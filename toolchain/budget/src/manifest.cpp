@@ -24,7 +24,8 @@ std::vector<std::string> split(const std::string& s, char sep) {
 std::string stack_usage_path(const std::string& object) {
   const size_t dot = object.rfind('.');
   const size_t slash = object.rfind('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return object + ".su";
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+    return object + ".su";
   return object.substr(0, dot) + ".su";
 }
 

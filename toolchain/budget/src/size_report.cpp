@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <tuple>
 
 #include "kestrel/budget/ar_archive.hpp"
 #include "kestrel/budget/error.hpp"
@@ -103,12 +104,13 @@ std::vector<Violation> check_budget(const BudgetFile& budget,
 }
 
 void print_report(std::ostream& out, const std::string& target, const BudgetFile& budget,
-                  const std::vector<LibraryReport>& libs,
-                  const std::vector<ExecutableReport>& exes, size_t top_frames) {
+                  const std::vector<LibraryReport>& libs, const std::vector<ExecutableReport>& exes,
+                  size_t top_frames) {
   out << "kestrel-budget: target " << target << " (sizes in KiB; limit in brackets)\n";
   out << std::left << std::setw(28) << "library" << std::right << std::setw(18) << "code"
       << std::setw(18) << "rodata" << std::setw(18) << "RAM(data+bss)" << std::setw(18)
-      << "max stack frame" << "\n";
+      << "max stack frame"
+      << "\n";
   SectionSizes total;
   for (const LibraryReport& lib : libs) {
     const LibraryLimits l = budget.limits_for(lib.name);

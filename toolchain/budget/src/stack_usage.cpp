@@ -39,28 +39,25 @@ std::vector<StackFrame> parse_stack_usage(std::string_view text, const std::stri
     } else {
       throw bad("unknown qualifier (static, dynamic or dynamic,bounded)");
     }
-    // "path:line:col:name": the third ':' after the path's end separates the name.
+    // "path:line:column:name": the name starts after the first ":digits:digits:" (a path may
+    // hold ':' too, but not followed by that pattern in practice; names may hold '::').
     size_t cut = std::string_view::npos;
-    size_t colons = 0;
-    for (size_t i = 0; i < where.size(); ++i) {
-      // Location is path:digits:digits: — find the first ':' followed by digits ':' digits ':'.
+    for (size_t i = 0; i < where.size() && cut == std::string_view::npos; ++i) {
       if (where[i] != ':') continue;
-      size_t j = i + 1;
-      size_t k = j;
-      while (k < where.size() && where[k] >= '0' && where[k] <= '9') ++k;
-      if (k == j || k >= where.size() || where[k] != ':') continue;
-      size_t m = k + 1;
-      while (m < where.size() && where[m] >= '0' && where[m] <= '9') ++m;
-      if (m == k + 1 || m >= where.size() || where[m] != ':') continue;
-      cut = m;
-      colons = 3;
-      break;
+      const auto digits_then_colon = [&](size_t from) -> size_t {
+        size_t k = from;
+        while (k < where.size() && where[k] >= '0' && where[k] <= '9') ++k;
+        return (k == from || k >= where.size() || where[k] != ':') ? std::string_view::npos : k;
+      };
+      const size_t line_end = digits_then_colon(i + 1);
+      if (line_end == std::string_view::npos) continue;
+      cut = digits_then_colon(line_end + 1);
     }
-    if (colons == 3) {
+    if (cut != std::string_view::npos) {
       f.location = std::string(where.substr(0, cut));
       f.function = std::string(where.substr(cut + 1));
     } else {
-      f.function = std::string(where);  // no location (e.g. compiler-generated thunk)
+      f.function = std::string(where);  // no location (e.g. a compiler-generated thunk)
     }
     frames.push_back(std::move(f));
   }

@@ -45,7 +45,7 @@ std::vector<Violation> check_budget(const BudgetFile& budget,
                                     const std::string& firmware_exe);
 
 void print_report(std::ostream& out, const std::string& target, const BudgetFile& budget,
-                  const std::vector<LibraryReport>& libs,
-                  const std::vector<ExecutableReport>& exes, size_t top_frames);
+                  const std::vector<LibraryReport>& libs, const std::vector<ExecutableReport>& exes,
+                  size_t top_frames);
 
 }  // namespace kestrel::budget
