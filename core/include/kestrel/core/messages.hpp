@@ -59,13 +59,17 @@ struct AttitudeSetpoint {
   float yaw_rate_radps = 0; // u_theta: counter-clockwise positive
 };
 
+// The autopilot's report. Attitude angles use AttitudeSetpoint's convention (the vehicle's
+// own, equation 1): pitch > 0 is nose down and tilts thrust towards +x body; roll > 0 tilts
+// thrust towards +y body, which is a negative right-handed rotation about x. A driver for an
+// autopilot with another convention converts.
 struct FlightStatus {
   TimeUs stamp;
   bool armed = false;
   float battery_v = 0;
-  float roll_rad = 0;
-  float pitch_rad = 0;
-  float yaw_rad = 0;
+  float roll_rad = 0;   // > 0: thrust tilted towards +y body
+  float pitch_rad = 0;  // > 0: nose down, thrust tilted towards +x body
+  float yaw_rad = 0;    // counter-clockwise from the world x axis
 };
 
 // A 2D pose measurement with its covariance (x, y, theta), e.g. from the scan matcher.
