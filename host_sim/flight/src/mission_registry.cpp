@@ -1,6 +1,7 @@
 #include "kestrel/sim/mission_registry.hpp"
 
 #include "kestrel/flight/autonomy_mission.hpp"
+#include "kestrel/hil/hil_bridge_mission.hpp"
 #include "kestrel/sim/manual_mission.hpp"
 
 namespace kestrel::sim {
@@ -36,6 +37,8 @@ const std::vector<MissionInfo>& mission_table() {
        make_flight<mission::MissionKind::kWaypoints>},
       {"explore", "autonomy stack: explore (--explorer blend|wallfollow|srt), fly home along the trail, land",
        make_flight<mission::MissionKind::kExplore>},
+      {"hil", "hardware in the loop: serve the devices to kestrel-fw --hil 127.0.0.1:PORT (port=5760), real time",
+       hil::make_hil_bridge},
   };
   return table;
 }
