@@ -183,6 +183,9 @@ TEST(CarmenReader, BadLinesGiveStatusAndLineNumber) {
       {"imu nan", "IMU 0 0 nan 1 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n", Status::kNotFinite, 1},
       {"robotlaser remission count", "ROBOTLASER1 0 -1 2 0.5 30 0.01 0 2 1 2 3 0.1 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
        Status::kMalformed, 1},
+      {"robotlaser huge remission count",
+       "ROBOTLASER1 0 -1 2 0.5 30 0.01 0 2 1 2 9223372036854775807 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
+       Status::kMalformed, 1},
       {"robotlaser max range", "ROBOTLASER1 0 -1 2 0.5 0 0.01 0 2 1 2 0 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
        Status::kMalformed, 1},
       {"param value", "PARAM kestrel_imu_period_us fast h 0\n", Status::kMalformed, 1},
@@ -203,6 +206,16 @@ TEST(CarmenReader, BadLinesGiveStatusAndLineNumber) {
     LogRecord rec;
     EXPECT_EQ(reader.next(rec), c.status) << c.name;
   }
+}
+
+TEST(CarmenReader, EmptyFileIsAnEmptyLog) {
+  TempLogFile file("empty.log");
+  file.write("");
+  CarmenReader reader;
+  ASSERT_EQ(reader.open(file.c_str()), Status::kOk);
+  int records = 0;
+  EXPECT_EQ(read_all(reader, records), Status::kNoData);
+  EXPECT_EQ(records, 0);
 }
 
 TEST(CarmenReader, TimeOrderPolicies) {
