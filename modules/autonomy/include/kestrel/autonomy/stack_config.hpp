@@ -24,9 +24,6 @@ struct StackConfig {
   // Where the vehicle stands at power-up, in the world frame the mission is expressed in: the
   // scan matcher's first scan starts the map at this pose.
   Pose2 home;
-  // Scan matching runs in the background map mode (false) on the vehicle; replay tools may ask
-  // for the synchronous mode.
-  bool synchronous_map = false;
   // Apply each scan-matcher pose at the time its scan was taken (the EKF's state history), or,
   // false, as if taken on arrival: the comparison of paper 000 Figure 3b.
   bool use_measurement_time = true;
