@@ -1,6 +1,6 @@
 #include "kestrel/estimation/nav_filter.hpp"
 
-#include <Eigen/LU>
+#include <Eigen/LU>  // 3x3 inverse with check: its definition lives in the LU module
 #include <algorithm>
 #include <cmath>
 #include <limits>
