@@ -109,8 +109,8 @@ TEST(NavFilter, AccelerometerAndGyroBiasesConverge) {
 }
 
 // GIVEN a quadrotor-like flight (thrust on body z, acceleration from roll and pitch reported in
-// FlightStatus with AttitudeSetpoint conventions), THEN the velocity is as good as level flight.
-TEST(NavFilter, UsesRollAndPitchWithAttitudeSetpointConventions) {
+// FlightStatus as right-handed rotations), THEN the velocity is as good as level flight.
+TEST(NavFilter, UsesAutopilotRollAndPitch) {
   SyntheticConfig c;
   c.duration_s = 20.0;
   c.tilt = true;
