@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "kestrel/logs/carmen_reader.hpp"
+#include "kestrel/logs/log_replay.hpp"
+#include "kestrel/logs/mines_reader.hpp"
+#include "kestrel/logs/open_log.hpp"
 #include "kestrel_test_paths.hpp"
 
 namespace kestrel::logs {
@@ -92,6 +95,50 @@ TEST(RealData, IntelStepsBackInTimeFourTimes) {
   EXPECT_DOUBLE_EQ(sum.last.pose.x, -0.596494);
   EXPECT_DOUBLE_EQ(sum.last.pose.y, -0.101202);
   EXPECT_EQ(sum.last.scan.stamp.us, 2'683'770'000);
+}
+
+TEST(RealData, MinesExp2) {
+  MinesReader reader;
+  ASSERT_EQ(reader.open(test::shared_data_path("mines/exp2.dat").c_str()), Status::kOk);
+  LogRecord rec, first, last;
+  int scans = 0;
+  Status s;
+  while (ok(s = reader.next(rec))) {
+    if (scans == 0) first = rec;
+    last = rec;
+    ++scans;
+    ASSERT_EQ(rec.scan.beam_count, 682);
+  }
+  ASSERT_EQ(s, Status::kNoData) << "line " << reader.error().line << ": " << reader.error().reason;
+  EXPECT_EQ(scans, 641);
+  // head -1 exp2.dat: 361431443 ..., range fields 24..86 are 0, then 559 557 ...
+  EXPECT_EQ(first.scan.stamp.us, 361431443);
+  EXPECT_EQ(first.scan.range_mm[0], range_code::kNoReturn);
+  EXPECT_EQ(first.scan.range_mm[63], 559);
+  EXPECT_EQ(first.scan.range_mm[64], 557);
+  int zeros = 0;
+  for (std::size_t i = 0; i < 682; ++i) zeros += first.scan.range_mm[i] == 0;
+  EXPECT_EQ(zeros, 421);
+  // tail -1 exp2.dat: 424593575 ..., first range of at least 20 mm is beam 69: 1923
+  EXPECT_EQ(last.line, 641u);
+  EXPECT_EQ(last.scan.stamp.us, 424593575);
+  EXPECT_EQ(last.scan.range_mm[69], 1923);
+}
+
+TEST(RealData, Freiburg079ThroughTheHalReplayDrivers) {
+  LogError err;
+  auto source = open_log(test::shared_data_path("carmen/freiburg-079.log.gz").c_str(), LogFormat::kAuto, {}, err);
+  ASSERT_NE(source, nullptr) << err.reason;
+  LogReplay replay(*source);
+  ASSERT_EQ(replay.prime(), Status::kOk);
+  EXPECT_EQ(replay.laser().geometry().beam_count, 360);
+  LaserScan scan;
+  int scans = 0;
+  Status s;
+  while ((s = replay.laser().poll(scan)) == Status::kOk) ++scans;
+  EXPECT_EQ(s, Status::kClosed);
+  EXPECT_EQ(scans, 4791);
+  EXPECT_DOUBLE_EQ(replay.last_scan_record().pose.x, 0.0319692);
 }
 
 }  // namespace
