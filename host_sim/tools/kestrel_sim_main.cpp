@@ -11,8 +11,10 @@
 
 #include "kestrel/output/png_writer.hpp"
 #include "kestrel/sim/builtin_worlds.hpp"
+#include "kestrel/sim/carmen_recorder.hpp"
 #include "kestrel/sim/flight_recorder.hpp"
 #include "kestrel/sim/mission_runner.hpp"
+#include "kestrel/sim/sim_observer_list.hpp"
 #include "kestrel/sim/simulation.hpp"
 #include "run_outputs.hpp"
 #include "sim_options.hpp"
@@ -73,7 +75,18 @@ int main(int argc, char** argv) {
 
   Simulation sim(std::move(world.world), cfg);
   FlightRecorder rec(sim.world(), sim.free_space());
-  sim.set_observer(&rec);
+  SimObserverList observers;
+  observers.add(&rec);
+  CarmenRecorder carmen;
+  const std::string log_path = opt.out_dir + "/sim.log";
+  if (opt.record) {
+    if (carmen.open(log_path.c_str(), sim.imu().sample_period()) != Status::kOk) {
+      std::fprintf(stderr, "kestrel-sim: cannot write the log '%s'\n", log_path.c_str());
+      return 1;
+    }
+    observers.add(&carmen);
+  }
+  sim.set_observer(&observers);
   const bool tty = ::isatty(2) != 0;
   const auto wall0 = std::chrono::steady_clock::now();
   const RunResult run = run_mission(sim, *mission, Duration::from_s(opt.duration_s),
@@ -83,6 +96,11 @@ int main(int argc, char** argv) {
 
   const std::string dir = opt.out_dir + "/";
   int rc = 0;
+  if (opt.record && carmen.close() != Status::kOk) {
+    std::fprintf(stderr, "kestrel-sim: writing the log '%s' failed: %s\n", log_path.c_str(),
+                 to_string(carmen.status()));
+    rc = 1;
+  }
   if (tools::write_metrics(dir + "metrics.json", opt, sim, rec, run, *mission) != Status::kOk) rc = 1;
   if (tools::write_truth_tum(dir + "trajectory_truth.tum", rec) != Status::kOk) rc = 1;
   char title[256], sub[256];
