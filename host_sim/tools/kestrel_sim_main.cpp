@@ -2,10 +2,10 @@
 // (a collision is an outcome, not an error: it is in metrics.json), 2 for a usage or input
 // error (bad option, unknown world, bad world/config/script file), 1 when outputs cannot be
 // written.
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <string>
 
@@ -68,7 +68,9 @@ int main(int argc, char** argv) {
   std::unique_ptr<Mission> mission = info->create(opt.mission_options, mission_error);
   if (!mission) return usage_error(mission_error);
 
-  if (::mkdir(opt.out_dir.c_str(), 0755) != 0 && errno != EEXIST) {
+  std::error_code ec;
+  std::filesystem::create_directories(opt.out_dir, ec);
+  if (ec || !std::filesystem::is_directory(opt.out_dir)) {
     std::fprintf(stderr, "kestrel-sim: cannot create the output directory '%s'\n", opt.out_dir.c_str());
     return 1;
   }
