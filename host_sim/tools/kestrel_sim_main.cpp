@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 
+#include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/output/png_writer.hpp"
 #include "kestrel/sim/builtin_worlds.hpp"
 #include "kestrel/sim/carmen_recorder.hpp"
@@ -30,12 +31,14 @@ int usage_error(const std::string& msg) {
   return 2;
 }
 
+// Drawn while the allocation guard is armed: a fixed buffer, no std::string.
 void progress_bar(double f) {
-  const int width = 40;
-  const int n = static_cast<int>(f * width + 0.5);
-  std::string bar(static_cast<std::size_t>(n), '#');
-  bar.resize(width, '.');
-  std::fprintf(stderr, "\r[%s] %3d%%", bar.c_str(), static_cast<int>(f * 100 + 0.5));
+  constexpr int kWidth = 40;
+  char bar[kWidth + 1];
+  const int n = static_cast<int>(f * kWidth + 0.5);
+  for (int i = 0; i < kWidth; ++i) bar[i] = i < n ? '#' : '.';
+  bar[kWidth] = '\0';
+  std::fprintf(stderr, "\r[%s] %3d%%", bar, static_cast<int>(f * 100 + 0.5));
   if (f >= 1.0) std::fprintf(stderr, "\n");
   std::fflush(stderr);
 }
@@ -76,7 +79,7 @@ int main(int argc, char** argv) {
   }
 
   Simulation sim(std::move(world.world), cfg);
-  FlightRecorder rec(sim.world(), sim.free_space());
+  FlightRecorder rec(sim.world(), sim.free_space(), Duration::from_s(opt.duration_s));
   SimObserverList observers;
   observers.add(&rec);
   CarmenRecorder carmen;
@@ -91,8 +94,18 @@ int main(int argc, char** argv) {
   sim.set_observer(&observers);
   const bool tty = ::isatty(2) != 0;
   const auto wall0 = std::chrono::steady_clock::now();
-  const RunResult run = run_mission(sim, *mission, Duration::from_s(opt.duration_s),
-                                    tty ? std::function<void(double)>(progress_bar) : std::function<void(double)>());
+  RunHooks hooks;
+  if (tty) hooks.progress = progress_bar;
+  uint64_t heap_allocs_after_arm = 0;
+  hooks.loop_begins = [] {
+    alloc_guard::reset();
+    alloc_guard::arm();
+  };
+  hooks.loop_ends = [&heap_allocs_after_arm] {
+    alloc_guard::disarm();
+    heap_allocs_after_arm = alloc_guard::count();
+  };
+  const RunResult run = run_mission(sim, *mission, Duration::from_s(opt.duration_s), hooks);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (run.status != Status::kOk) return usage_error(run.message);
 
@@ -103,7 +116,8 @@ int main(int argc, char** argv) {
                  to_string(carmen.status()));
     rc = 1;
   }
-  if (tools::write_metrics(dir + "metrics.json", opt, sim, rec, run, *mission) != Status::kOk) rc = 1;
+  if (tools::write_metrics(dir + "metrics.json", opt, sim, rec, run, *mission, heap_allocs_after_arm) != Status::kOk)
+    rc = 1;
   if (tools::write_truth_tum(dir + "trajectory_truth.tum", rec) != Status::kOk) rc = 1;
   char title[256], sub[256];
   std::snprintf(title, sizeof(title), "KESTREL-SIM  %s  (%s)", sim.world().name.c_str(), opt.mission.c_str());

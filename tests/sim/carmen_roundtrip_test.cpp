@@ -47,7 +47,7 @@ void record_and_replay(const LaserParams& laser, const char* name) {
   sp.thrust = 0.55f;
   sp.yaw_rate_radps = 0.5f;
   ASSERT_EQ(sim.flight_controller().send(sp), Status::kOk);
-  (void)sim.step_until(TimeUs::from_s(1.5));
+  (void)sim.step_until(TimeUs::from_s(KESTREL_SIM_SHORT_TESTS ? 0.5 : 1.5));
   ASSERT_EQ(rec.close(), Status::kOk);
   ASSERT_FALSE(keep.scans.empty());
 

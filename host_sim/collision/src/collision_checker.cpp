@@ -79,6 +79,7 @@ CollisionChecker::CollisionChecker(const World& world, const SegmentGrid& grid,
   reach_ = std::hypot(radius_, height_ / 2) + t;
   seen_segments_.assign(grid_.segments().size(), 0);
   seen_pieces_.assign(pieces_.size(), 0);
+  candidates_.reserve(pieces_.size());  // never grows in flight
 }
 
 bool CollisionChecker::check(const VehicleState& state, Contact& out) {
