@@ -2,17 +2,20 @@
 // (a collision is an outcome, not an error: it is in metrics.json), 2 for a usage or input
 // error (bad option, unknown world, bad world/config/script file), 1 when outputs cannot be
 // written.
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <string>
 
+#include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/output/png_writer.hpp"
 #include "kestrel/sim/builtin_worlds.hpp"
+#include "kestrel/sim/carmen_recorder.hpp"
 #include "kestrel/sim/flight_recorder.hpp"
 #include "kestrel/sim/mission_runner.hpp"
+#include "kestrel/sim/sim_observer_list.hpp"
 #include "kestrel/sim/simulation.hpp"
 #include "run_outputs.hpp"
 #include "sim_options.hpp"
@@ -28,12 +31,14 @@ int usage_error(const std::string& msg) {
   return 2;
 }
 
+// Drawn while the allocation guard is armed: a fixed buffer, no std::string.
 void progress_bar(double f) {
-  const int width = 40;
-  const int n = static_cast<int>(f * width + 0.5);
-  std::string bar(static_cast<std::size_t>(n), '#');
-  bar.resize(width, '.');
-  std::fprintf(stderr, "\r[%s] %3d%%", bar.c_str(), static_cast<int>(f * 100 + 0.5));
+  constexpr int kWidth = 40;
+  char bar[kWidth + 1];
+  const int n = static_cast<int>(f * kWidth + 0.5);
+  for (int i = 0; i < kWidth; ++i) bar[i] = i < n ? '#' : '.';
+  bar[kWidth] = '\0';
+  std::fprintf(stderr, "\r[%s] %3d%%", bar, static_cast<int>(f * 100 + 0.5));
   if (f >= 1.0) std::fprintf(stderr, "\n");
   std::fflush(stderr);
 }
@@ -66,24 +71,53 @@ int main(int argc, char** argv) {
   std::unique_ptr<Mission> mission = info->create(opt.mission_options, mission_error);
   if (!mission) return usage_error(mission_error);
 
-  if (::mkdir(opt.out_dir.c_str(), 0755) != 0 && errno != EEXIST) {
+  std::error_code ec;
+  std::filesystem::create_directories(opt.out_dir, ec);
+  if (ec || !std::filesystem::is_directory(opt.out_dir)) {
     std::fprintf(stderr, "kestrel-sim: cannot create the output directory '%s'\n", opt.out_dir.c_str());
     return 1;
   }
 
   Simulation sim(std::move(world.world), cfg);
-  FlightRecorder rec(sim.world(), sim.free_space());
-  sim.set_observer(&rec);
+  FlightRecorder rec(sim.world(), sim.free_space(), Duration::from_s(opt.duration_s));
+  SimObserverList observers;
+  observers.add(&rec);
+  CarmenRecorder carmen;
+  const std::string log_path = opt.out_dir + "/sim.log";
+  if (opt.record) {
+    if (carmen.open(log_path.c_str(), sim.imu().sample_period()) != Status::kOk) {
+      std::fprintf(stderr, "kestrel-sim: cannot write the log '%s'\n", log_path.c_str());
+      return 1;
+    }
+    observers.add(&carmen);
+  }
+  sim.set_observer(&observers);
   const bool tty = ::isatty(2) != 0;
   const auto wall0 = std::chrono::steady_clock::now();
-  const RunResult run = run_mission(sim, *mission, Duration::from_s(opt.duration_s),
-                                    tty ? std::function<void(double)>(progress_bar) : std::function<void(double)>());
+  RunHooks hooks;
+  if (tty) hooks.progress = progress_bar;
+  uint64_t heap_allocs_after_arm = 0;
+  hooks.loop_begins = [] {
+    alloc_guard::reset();
+    alloc_guard::arm();
+  };
+  hooks.loop_ends = [&heap_allocs_after_arm] {
+    alloc_guard::disarm();
+    heap_allocs_after_arm = alloc_guard::count();
+  };
+  const RunResult run = run_mission(sim, *mission, Duration::from_s(opt.duration_s), hooks);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (run.status != Status::kOk) return usage_error(run.message);
 
   const std::string dir = opt.out_dir + "/";
   int rc = 0;
-  if (tools::write_metrics(dir + "metrics.json", opt, sim, rec, run, *mission) != Status::kOk) rc = 1;
+  if (opt.record && carmen.close() != Status::kOk) {
+    std::fprintf(stderr, "kestrel-sim: writing the log '%s' failed: %s\n", log_path.c_str(),
+                 to_string(carmen.status()));
+    rc = 1;
+  }
+  if (tools::write_metrics(dir + "metrics.json", opt, sim, rec, run, *mission, heap_allocs_after_arm) != Status::kOk)
+    rc = 1;
   if (tools::write_truth_tum(dir + "trajectory_truth.tum", rec) != Status::kOk) rc = 1;
   char title[256], sub[256];
   std::snprintf(title, sizeof(title), "KESTREL-SIM  %s  (%s)", sim.world().name.c_str(), opt.mission.c_str());

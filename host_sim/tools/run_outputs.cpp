@@ -8,7 +8,7 @@
 namespace kestrel::sim::tools {
 
 Status write_metrics(const std::string& path, const SimOptions& opt, Simulation& sim, const FlightRecorder& rec,
-                     const RunResult& run, const Mission& mission) {
+                     const RunResult& run, const Mission& mission, uint64_t heap_allocs_after_arm) {
   output::JsonWriter j;
   j.begin_object();
   j.string("world", sim.world().name);
@@ -19,6 +19,7 @@ Status write_metrics(const std::string& path, const SimOptions& opt, Simulation&
   j.number("sim_time_s", run.end.seconds());
   j.string("end_reason", run.message);
   j.integer("collisions", static_cast<int64_t>(sim.contacts().size()));
+  j.integer("heap_allocs_after_arm", static_cast<int64_t>(heap_allocs_after_arm));
   j.begin_array("contacts");
   for (const Contact& c : sim.contacts()) {
     j.begin_object();

@@ -12,7 +12,7 @@
 namespace kestrel::sim::tools {
 
 Status write_metrics(const std::string& path, const SimOptions& opt, Simulation& sim, const FlightRecorder& rec,
-                     const RunResult& run, const Mission& mission);
+                     const RunResult& run, const Mission& mission, uint64_t heap_allocs_after_arm);
 Status write_truth_tum(const std::string& path, const FlightRecorder& rec);
 
 }  // namespace kestrel::sim::tools

@@ -105,14 +105,6 @@ Canvas render_run(const World& world, const FlightRecorder& rec, const std::vect
       const double x0 = fs.origin().x() + ix * res, y0 = fs.origin().y() + iy * res;
       c.rect(c.wx(x0), c.wy(y0 + res), c.wx(x0 + res), c.wy(y0), col, true);
     }
-  // Room names.
-  for (const Room& r : world.rooms) {
-    Eigen::Vector2d ctr = Eigen::Vector2d::Zero();
-    for (const auto& p : r.polygon) ctr += p;
-    ctr /= static_cast<double>(r.polygon.size());
-    const int tw = Canvas::text_width(r.name, 2);
-    c.text(c.wx(ctr.x()) - tw / 2, c.wy(ctr.y()) - 7, r.name, Rgb{150, 150, 170}, 2);
-  }
   // Obstacles, coloured by top height; hanging ones (not standing on the floor) hatched.
   for (const Obstacle& o : world.obstacles) {
     if (o.material == Material::kGlass) continue;
@@ -133,6 +125,14 @@ Canvas render_run(const World& world, const FlightRecorder& rec, const std::vect
         dashed(c, w.a, w.b, Rgb{150, 50, 190}, wall_px, 0.25);
         break;
     }
+  }
+  // Room names.
+  for (const Room& r : world.rooms) {
+    Eigen::Vector2d ctr = Eigen::Vector2d::Zero();
+    for (const auto& p : r.polygon) ctr += p;
+    ctr /= static_cast<double>(r.polygon.size());
+    const int tw = Canvas::text_width(r.name, 2);
+    c.text(c.wx(ctr.x()) - tw / 2, c.wy(ctr.y()) - 7, r.name, Rgb{150, 150, 170}, 2);
   }
   // The last scan's returns, from the true pose it was taken at.
   if (rec.has_scan()) {

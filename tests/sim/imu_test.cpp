@@ -24,7 +24,7 @@ TEST(SimImu, AtRestReadsGravityOnZPlusBiasWithTheRightNoise) {
   Eigen::Vector3d s1 = Eigen::Vector3d::Zero(), s2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d g1 = Eigen::Vector3d::Zero(), g2 = Eigen::Vector3d::Zero();
   int n = 0;
-  for (int64_t ms = 1; ms <= 100000; ++ms) {
+  for (int64_t ms = 1; ms <= 20000; ++ms) {
     imu.on_step(rest(TimeUs{ms * 1000}));
     ImuSample smp;
     while (imu.poll(smp) == Status::kOk) {
@@ -37,16 +37,16 @@ TEST(SimImu, AtRestReadsGravityOnZPlusBiasWithTheRightNoise) {
       ++n;
     }
   }
-  ASSERT_EQ(n, 20000);
+  ASSERT_EQ(n, 4000);
   const Eigen::Vector3d mean = s1 / n, gmean = g1 / n;
   const Eigen::Vector3d want = Eigen::Vector3d(0, 0, 9.81) + imu.accel_bias();
   const double sigma_a = p.accel_noise_density * std::sqrt(p.rate_hz);
   const double sigma_g = p.gyro_noise_density * std::sqrt(p.rate_hz);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(mean[i], want[i], 4 * sigma_a / std::sqrt(n));
-    EXPECT_NEAR(std::sqrt(s2[i] / n - mean[i] * mean[i]), sigma_a, 0.03 * sigma_a);
+    EXPECT_NEAR(std::sqrt(s2[i] / n - mean[i] * mean[i]), sigma_a, 0.05 * sigma_a);
     EXPECT_NEAR(gmean[i], imu.gyro_bias()[i], 4 * sigma_g / std::sqrt(n));
-    EXPECT_NEAR(std::sqrt(g2[i] / n - gmean[i] * gmean[i]), sigma_g, 0.03 * sigma_g);
+    EXPECT_NEAR(std::sqrt(g2[i] / n - gmean[i] * gmean[i]), sigma_g, 0.05 * sigma_g);
   }
 }
 
@@ -69,14 +69,15 @@ TEST(SimImu, BiasRandomWalkGrowsWithTheSquareRootOfTime) {
   p.accel_noise_density = p.gyro_noise_density = 0;
   p.accel_bias_walk = 0.01;
   double s2 = 0;
-  const int n = 200;
-  const int64_t seconds = 25;
+  const int n = 100;
+  const int64_t seconds = 10;
   for (int seed = 0; seed < n; ++seed) {
     SimImu imu(p, Rng(static_cast<uint64_t>(seed) + 1000));
     for (int64_t k = 1; k <= seconds * 200; ++k) imu.on_step(rest(TimeUs{k * 5000}));
     s2 += imu.accel_bias().squaredNorm();
   }
-  EXPECT_NEAR(std::sqrt(s2 / (3 * n)), p.accel_bias_walk * std::sqrt(static_cast<double>(seconds)), 0.008);
+  const double want = p.accel_bias_walk * std::sqrt(static_cast<double>(seconds));
+  EXPECT_NEAR(std::sqrt(s2 / (3 * n)), want, 0.15 * want);
 }
 
 TEST(SimImu, TiltedBodySeesGravityAlongItsAxes) {

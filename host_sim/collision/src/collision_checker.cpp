@@ -75,28 +75,52 @@ CollisionChecker::CollisionChecker(const World& world, const SegmentGrid& grid,
     pieces_.push_back(std::move(p));
   }
   for (const Obstacle& o : world.obstacles) pieces_.push_back({o.polygon, o.z_min, o.z_max, o.line});
-  // The grid lists segment centre lines; a wall's box reaches half a thickness beyond them.
-  reach_ = std::hypot(radius_, height_ / 2) + t;
-  seen_segments_.assign(grid_.segments().size(), 0);
+  reach_ = std::hypot(radius_, height_ / 2);
+  // Cell lists of every piece's bounding box (two passes: count, then fill).
+  const std::size_t ncell = static_cast<std::size_t>(grid_.nx()) * grid_.ny();
+  auto for_cells = [&](const Prism& p, auto&& f) {
+    Eigen::Vector2d lo = p.polygon[0], hi = p.polygon[0];
+    for (const auto& q : p.polygon) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    const int x0 = std::max(0, grid_.cell_x(lo.x())), x1 = std::min(grid_.nx() - 1, grid_.cell_x(hi.x()));
+    const int y0 = std::max(0, grid_.cell_y(lo.y())), y1 = std::min(grid_.ny() - 1, grid_.cell_y(hi.y()));
+    for (int iy = y0; iy <= y1; ++iy)
+      for (int ix = x0; ix <= x1; ++ix) f(static_cast<std::size_t>(iy) * grid_.nx() + ix);
+  };
+  std::vector<uint32_t> count(ncell + 1, 0);
+  for (const Prism& p : pieces_) for_cells(p, [&](std::size_t c) { ++count[c + 1]; });
+  cell_start_.assign(ncell + 1, 0);
+  for (std::size_t c = 0; c < ncell; ++c) cell_start_[c + 1] = cell_start_[c] + count[c + 1];
+  cell_pieces_.assign(cell_start_[ncell], 0);
+  std::vector<uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t i = 0; i < pieces_.size(); ++i)
+    for_cells(pieces_[i], [&](std::size_t c) { cell_pieces_[fill[c]++] = static_cast<int>(i); });
   seen_pieces_.assign(pieces_.size(), 0);
+  candidates_.reserve(pieces_.size());  // never grows in flight
 }
 
 bool CollisionChecker::check(const VehicleState& state, Contact& out) {
   if (++stamp_ == 0) {
-    std::fill(seen_segments_.begin(), seen_segments_.end(), 0);
     std::fill(seen_pieces_.begin(), seen_pieces_.end(), 0);
     stamp_ = 1;
   }
   const Eigen::Vector2d c(state.position_m.x(), state.position_m.y());
-  const Eigen::Vector2d r(reach_, reach_);
   candidates_.clear();
-  const std::vector<Segment>& segs = grid_.segments();
-  grid_.for_each_in_box(c - r, c + r, seen_segments_, stamp_, [&](uint32_t si) {
-    const int piece = segs[si].piece;
-    if (seen_pieces_[static_cast<std::size_t>(piece)] == stamp_) return;
-    seen_pieces_[static_cast<std::size_t>(piece)] = stamp_;
-    candidates_.push_back(piece);
-  });
+  if (!c.allFinite()) return false;
+  const int x0 = std::max(0, grid_.cell_x(c.x() - reach_)), x1 = std::min(grid_.nx() - 1, grid_.cell_x(c.x() + reach_));
+  const int y0 = std::max(0, grid_.cell_y(c.y() - reach_)), y1 = std::min(grid_.ny() - 1, grid_.cell_y(c.y() + reach_));
+  for (int iy = y0; iy <= y1; ++iy)
+    for (int ix = x0; ix <= x1; ++ix) {
+      const std::size_t cell = static_cast<std::size_t>(iy) * grid_.nx() + ix;
+      for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+        const int piece = cell_pieces_[k];
+        if (seen_pieces_[static_cast<std::size_t>(piece)] == stamp_) continue;
+        seen_pieces_[static_cast<std::size_t>(piece)] = stamp_;
+        candidates_.push_back(piece);
+      }
+    }
   std::sort(candidates_.begin(), candidates_.end());  // deterministic order
 
   CylinderShape body{state.position_m, state.rotation(), radius_, height_ / 2};

@@ -1,11 +1,15 @@
 #include "kestrel/sim/flight_recorder.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace kestrel::sim {
 
-FlightRecorder::FlightRecorder(const World& world, const FreeSpaceMap& free_space)
+FlightRecorder::FlightRecorder(const World& world, const FreeSpaceMap& free_space, Duration expected_duration)
     : world_(world), free_(free_space) {
+  const double s = std::max(1.0, expected_duration.seconds());
+  scan_truth_.reserve(static_cast<std::size_t>(s * 40 + 64));  // up to 40 Hz scans
+  path_.reserve(static_cast<std::size_t>(s * 50 + 64));        // every 20 steps of 1 ms
   seen_.assign(static_cast<std::size_t>(free_.width()) * free_.height(), 0);
   room_entry_.assign(world_.rooms.size(), -1.0);
 }

@@ -2,8 +2,8 @@
 
 namespace kestrel::sim {
 
-RunResult run_mission(Simulation& sim, Mission& mission, Duration duration,
-                      const std::function<void(double)>& progress) {
+RunResult run_mission(Simulation& sim, Mission& mission, Duration duration, const RunHooks& hooks) {
+  const std::function<void(double)>& progress = hooks.progress;
   RunResult r;
   r.status = mission.start(sim);
   if (r.status != Status::kOk) {
@@ -15,6 +15,7 @@ RunResult run_mission(Simulation& sim, Mission& mission, Duration duration,
   const TimeUs stop = start + duration;
   const Duration tick = mission.tick_period().us > 0 ? mission.tick_period() : Duration::from_ms(10);
   TimeUs next_progress = start + Duration::from_s(1.0);
+  if (hooks.loop_begins) hooks.loop_begins();
   // The first tick is at the start time, then one every tick period after each step.
   r.state = mission.tick(sim);
   while (r.state == MissionState::kRunning && sim.now() < stop) {
@@ -32,8 +33,9 @@ RunResult run_mission(Simulation& sim, Mission& mission, Duration duration,
       next_progress = next_progress + Duration::from_s(1.0);
     }
   }
-  if (progress) progress(1.0);
   r.end = sim.now();
+  if (hooks.loop_ends) hooks.loop_ends();
+  if (progress) progress(1.0);
   if (r.collided) {
     const Contact& c = sim.contacts().front();
     r.message = "collision at t=" + std::to_string(c.stamp.seconds()) + " s";

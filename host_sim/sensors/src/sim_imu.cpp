@@ -35,7 +35,13 @@ bool SimImu::on_step(const VehicleState& after) {
     s.gyro_radps[i] = static_cast<float>(after.body_rate_radps[i] + gyro_bias_[i] + gyro_sigma_ * rng_.gaussian());
   }
   last_ = s;
-  if (!queue_.push(s)) ++overruns_;
+  if (!queue_.push(s)) {
+    // Nobody read for 1.3 s: the oldest sample makes room (single-threaded simulation).
+    ImuSample dropped;
+    (void)queue_.pop(dropped);
+    (void)queue_.push(s);
+    ++overruns_;
+  }
   next_ = next_ + period_;
   if (next_ <= after.stamp) next_ = after.stamp + period_;  // never fall behind by a burst
   return true;

@@ -20,22 +20,28 @@ SegmentGrid::SegmentGrid(std::vector<Segment> segments, double cell_m)
   const std::size_t ncell = static_cast<std::size_t>(nx_) * ny_;
   std::vector<uint32_t> count(ncell + 1, 0);
   // Two passes (count, then fill) give compact rows without per-cell vectors. A segment is
-  // listed in every cell its supercover touches, found by sampling at a quarter cell.
+  // listed in every cell it touches: the cells of its bounding box whose rectangle, grown by
+  // a small margin so that rounding in the ray walk never misses a corner, is not entirely
+  // on one side of the segment's line.
+  const double eps = 1e-6 * cell_ + 1e-9;
   auto visit = [&](const Segment& s, auto&& on_cell) {
-    const double len = (s.b - s.a).norm();
-    const int steps = std::max(1, static_cast<int>(std::ceil(len / (cell_ * 0.25))));
-    int last = -1;
-    for (int k = 0; k <= steps; ++k) {
-      const Eigen::Vector2d p = s.a + (s.b - s.a) * (static_cast<double>(k) / steps);
-      // The 3x3 neighbourhood of each sample guarantees the supercover despite sampling.
-      const int cx = cell_x(p.x()), cy = cell_y(p.y());
-      const int key = cy * nx_ + cx;
-      if (key == last) continue;
-      last = key;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          if (in_grid(cx + dx, cy + dy)) on_cell(index(cx + dx, cy + dy));
-    }
+    const Eigen::Vector2d lo_s = s.a.cwiseMin(s.b), hi_s = s.a.cwiseMax(s.b);
+    const int x0 = std::max(0, cell_x(lo_s.x() - eps)), x1 = std::min(nx_ - 1, cell_x(hi_s.x() + eps));
+    const int y0 = std::max(0, cell_y(lo_s.y() - eps)), y1 = std::min(ny_ - 1, cell_y(hi_s.y() + eps));
+    const Eigen::Vector2d d = s.b - s.a;
+    for (int iy = y0; iy <= y1; ++iy)
+      for (int ix = x0; ix <= x1; ++ix) {
+        const double cx0 = origin_.x() + ix * cell_ - eps, cx1 = origin_.x() + (ix + 1) * cell_ + eps;
+        const double cy0 = origin_.y() + iy * cell_ - eps, cy1 = origin_.y() + (iy + 1) * cell_ + eps;
+        int pos = 0, neg = 0;
+        for (const Eigen::Vector2d& c : {Eigen::Vector2d(cx0, cy0), Eigen::Vector2d(cx1, cy0),
+                                         Eigen::Vector2d(cx0, cy1), Eigen::Vector2d(cx1, cy1)}) {
+          const double side = d.x() * (c.y() - s.a.y()) - d.y() * (c.x() - s.a.x());
+          pos += side >= 0 ? 1 : 0;
+          neg += side <= 0 ? 1 : 0;
+        }
+        if (pos > 0 && neg > 0) on_cell(index(ix, iy));
+      }
   };
   std::vector<uint32_t> mark(ncell, 0);
   for (std::size_t i = 0; i < segments_.size(); ++i) {

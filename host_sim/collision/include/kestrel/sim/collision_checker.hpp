@@ -3,7 +3,8 @@
 // attitude; every wall is a thin box (its segment thickened to World::wall_thickness_m) and
 // every obstacle a prism over its convex polygon, each over its own height range. Narrow
 // phase: libccd's MPR (Minkowski Portal Refinement), which also gives the depth and a contact
-// point. Broad phase: the ray caster's uniform segment grid, queried with the cylinder's
+// point. Broad phase: a uniform grid (the ray caster's cells) listing every piece whose
+// bounding box overlaps a cell, footprint interiors included, queried with the cylinder's
 // bounding box, so only pieces near the vehicle are tested. The floor is not a contact
 // (the vehicle lands on it).
 #include <Eigen/Core>
@@ -43,7 +44,8 @@ class CollisionChecker {
   const SegmentGrid& grid_;
   std::vector<Prism> pieces_;
   double radius_, height_, reach_;
-  std::vector<uint32_t> seen_segments_;
+  std::vector<uint32_t> cell_start_;  // compressed rows: pieces per grid cell
+  std::vector<int> cell_pieces_;
   std::vector<uint32_t> seen_pieces_;
   uint32_t stamp_ = 0;
   std::vector<int> candidates_;

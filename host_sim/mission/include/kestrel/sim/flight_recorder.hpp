@@ -14,7 +14,9 @@ namespace kestrel::sim {
 
 class FlightRecorder final : public SimObserver {
  public:
-  FlightRecorder(const World& world, const FreeSpaceMap& free_space);
+  // `expected_duration` sizes the buffers up front, so recording a flight of that length does
+  // not allocate once it runs.
+  FlightRecorder(const World& world, const FreeSpaceMap& free_space, Duration expected_duration = Duration::from_s(60));
 
   void on_scan(const LaserScan& scan, const VehicleState& truth) override;
   void on_imu(const ImuSample& sample) override;

@@ -18,8 +18,16 @@ struct RunResult {
   std::string message;             // why it ended, for people
 };
 
-// `progress(fraction)` is called every simulated second (may be empty).
-RunResult run_mission(Simulation& sim, Mission& mission, Duration duration,
-                      const std::function<void(double)>& progress = {});
+// Optional callbacks around the loop (each may be empty): `progress(fraction)` every simulated
+// second; `loop_begins` after the mission has started, just before the first tick (the
+// system is armed: kestrel-sim arms the allocation guard there), and `loop_ends` right after
+// the last step, before anything is formatted for people.
+struct RunHooks {
+  std::function<void(double)> progress;
+  std::function<void()> loop_begins;
+  std::function<void()> loop_ends;
+};
+
+RunResult run_mission(Simulation& sim, Mission& mission, Duration duration, const RunHooks& hooks = {});
 
 }  // namespace kestrel::sim

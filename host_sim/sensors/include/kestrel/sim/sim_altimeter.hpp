@@ -12,14 +12,25 @@ class SimAltimeter final : public hal::Altimeter {
  public:
   // Oldest unread sample: kOk, or kNoData.
   Status poll(AltimeterSample& out) override;
-  // Producer side (the laser). Returns false when the queue is full (sample dropped).
-  bool push(const AltimeterSample& s) { return queue_.push(s); }
+  // Producer side (the laser). When nobody has read for a long time the oldest sample
+  // makes room (the simulation is single-threaded, so the producer may pop): returns false
+  // then, and overruns() counts it.
+  bool push(const AltimeterSample& s) {
+    if (queue_.push(s)) return true;
+    AltimeterSample dropped;
+    (void)queue_.pop(dropped);
+    (void)queue_.push(s);
+    ++overruns_;
+    return false;
+  }
+  uint64_t overruns() const { return overruns_; }
   bool has_source() const { return has_source_; }
   void set_has_source(bool v) { has_source_ = v; }
 
  private:
   RingBuffer<AltimeterSample, 64> queue_;
   bool has_source_ = false;
+  uint64_t overruns_ = 0;
 };
 
 }  // namespace kestrel::sim

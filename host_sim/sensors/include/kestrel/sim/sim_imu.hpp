@@ -26,7 +26,7 @@ class SimImu final : public hal::Imu {
   const ImuSample& last_sample() const { return last_; }
   Eigen::Vector3d accel_bias() const { return accel_bias_; }
   Eigen::Vector3d gyro_bias() const { return gyro_bias_; }
-  uint64_t overruns() const { return overruns_; }  // samples lost because nobody read them
+  uint64_t overruns() const { return overruns_; }  // oldest samples dropped: nobody read them
 
  private:
   ImuParams p_;
