@@ -169,7 +169,12 @@ GridPose CorrelativeSearch::branch_and_bound() {
   std::sort(order_.begin(), order_.begin() + nt, [](const ThetaBound& a, const ThetaBound& b) {
     return a.bound != b.bound ? a.bound > b.bound : a.k < b.k;
   });
+  // The prediction itself is a real candidate: starting from its exact score prunes early.
   GridPose best;
+  if (half_steps_ >= 0) {
+    rotate(0);
+    best = {0, 0, 0, bound(0, 0, 0)};
+  }
   for (int i = 0; i < nt; ++i) {
     const ThetaBound& t = order_[static_cast<std::size_t>(i)];
     if (t.bound < best.score) break;  // sorted: no later rotation can win either

@@ -146,8 +146,18 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   const int r = std::min<int>(params_.cov_theta_steps, 64);
   const int k0 = std::max(-half_steps, best.k - r), k1 = std::min(half_steps, best.k + r);
   const int count = k1 - k0 + 1;
+  // Near the optimum a small rotation moves the best translation by a cell or two, so each
+  // rotation's best is taken over a +-2 cell neighbourhood by image addition (cheap, and
+  // exact whenever the per-rotation optimum stays in it).
   for (int k = k0; k <= k1; ++k) {
-    curve_[static_cast<std::size_t>(k - k0)] = k == best.k ? best.score : search_.best_at(k, best.tx, best.ty).score;
+    int32_t top = 0;
+    if (k == best.k) {
+      top = best.score;
+    } else {
+      const uint16_t* sl = search_.slice(k, best.tx, best.ty, 2);
+      for (int i = 0; i < 25; ++i) top = std::max<int32_t>(top, sl[i]);
+    }
+    curve_[static_cast<std::size_t>(k - k0)] = top;
   }
   const int ch = std::min<int>(params_.cov_half_window, kMaxExhaustiveWindow);
   const uint16_t* slice = search_.slice(best.k, best.tx, best.ty, ch);
