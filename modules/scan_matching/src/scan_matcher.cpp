@@ -108,14 +108,24 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
     pred.y += (last_pose_.y - prev_pose_.y) * f;
     pred.theta = wrap_angle(pred.theta + wrap_angle(last_pose_.theta - prev_pose_.theta) * f);
   }
+  // The window is the box around the prediction that max acceleration allows, grown to also
+  // hold the vehicle stopping (the last pose): on logs sampled seconds apart the velocity
+  // can change completely between scans, and on the vehicle the growth is v * dt, a few cm.
+  const float win_m0 = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
+  const float win_rad0 = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
+  const float gx = 0.5f * (last_pose_.x - pred.x), gy = 0.5f * (last_pose_.y - pred.y);
+  const float gt = 0.5f * wrap_angle(last_pose_.theta - pred.theta);
+  pred.x += gx;
+  pred.y += gy;
+  pred.theta = wrap_angle(pred.theta + gt);
+  const float win_m = win_m0 + std::max(std::fabs(gx), std::fabs(gy));
+  const float win_rad = win_rad0 + std::fabs(gt);
   const float res = map->resolution_m();
   // The search grid is the map's grid (and whole angle steps): a vehicle that holds still gets
   // the same answer scan after scan instead of one that wanders inside a cell.
   pred.x = map->origin_x_m() + std::round((pred.x - map->origin_x_m()) / res) * res;
   pred.y = map->origin_y_m() + std::round((pred.y - map->origin_y_m()) / res) * res;
   pred.theta = wrap_angle(std::round(pred.theta / params_.angle_step_rad) * params_.angle_step_rad);
-  const float win_m = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
-  const float win_rad = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
   int half_cells = static_cast<int>(ceil_div(win_m, res));
   int half_steps = static_cast<int>(ceil_div(win_rad, params_.angle_step_rad));
   const int cap_cells = params_.multi_resolution ? kMaxWindowCells : kMaxExhaustiveWindow;
