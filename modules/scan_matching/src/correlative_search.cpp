@@ -42,9 +42,14 @@ void CorrelativeSearch::rotate(int k) {
   rotated_k_ = k;
   const float th = centre_.theta + static_cast<float>(k) * step_rad_;
   const float c = std::cos(th), s = std::sin(th);
+  // floor() without a library call: truncate, then step down for negative fractions.
+  const auto floor_i = [](float v) {
+    const auto t = static_cast<int32_t>(v);
+    return t - static_cast<int32_t>(v < static_cast<float>(t));
+  };
   for (uint16_t i = 0; i < n_; ++i) {
-    qx_[i] = static_cast<int32_t>(std::floor(c * px_[i] - s * py_[i] + cx_cells_));
-    qy_[i] = static_cast<int32_t>(std::floor(s * px_[i] + c * py_[i] + cy_cells_));
+    qx_[i] = floor_i(c * px_[i] - s * py_[i] + cx_cells_);
+    qy_[i] = floor_i(s * px_[i] + c * py_[i] + cy_cells_);
   }
 }
 
