@@ -1,0 +1,84 @@
+// Guidance cycle of paper 002's explorer (wall-following field + SRT-Star + blending) with the
+// two lasers of the design: the URG-04LX (682 beams over 240 degrees, Verdex at 10 Hz) and the
+// UTM-30LX (1081 beams over 270 degrees, Overo at 40 Hz). The vehicle hovers in a 6 m x 4 m room
+// off its waypoint, so each iteration is one steady-state cycle; the arrival case (sectors,
+// new node, frontier pruning, new waypoint) is measured apart.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+
+#include "kestrel/core/messages.hpp"
+#include "kestrel/exploration/blend_explorer.hpp"
+#include "kestrel/exploration/srt_star_planner.hpp"
+
+namespace {
+
+using namespace kestrel;
+using namespace kestrel::exploration;
+
+// Ranges from (x, y, heading) to the walls of the room [0, w] x [0, h], in mm.
+LaserScan room_scan(uint16_t beams, double fov_deg, double x, double y, double heading, double w, double h) {
+  LaserScan s;
+  s.beam_count = beams;
+  const double fov = fov_deg * M_PI / 180.0;
+  s.first_angle_rad = static_cast<float>(-fov / 2);
+  s.angle_step_rad = static_cast<float>(fov / beams);
+  s.max_range_mm = 30000;
+  for (uint16_t i = 0; i < beams; ++i) {
+    const double a = heading + s.first_angle_rad + s.angle_step_rad * i;
+    const double c = std::cos(a), sn = std::sin(a);
+    double t = 1e9;
+    if (c > 1e-9) t = std::min(t, (w - x) / c);
+    if (c < -1e-9) t = std::min(t, -x / c);
+    if (sn > 1e-9) t = std::min(t, (h - y) / sn);
+    if (sn < -1e-9) t = std::min(t, -y / sn);
+    s.range_mm[i] = static_cast<uint16_t>(std::lround(std::min(t, 29.0) * 1000.0));
+  }
+  return s;
+}
+
+void guidance_step(benchmark::State& state, uint16_t beams, double fov_deg) {
+  auto explorer = std::make_unique<BlendExplorer>();
+  LaserScan scan = room_scan(beams, fov_deg, 2.0, 1.5, 0.3, 6.0, 4.0);
+  if (explorer->configure(Params{}, BeamGeometry::of(scan)) != Status::kOk) {
+    state.SkipWithError("configure failed");
+    return;
+  }
+  NavState nav;
+  nav.valid = true;
+  nav.position_m = {2.0f, 1.5f, 1.0f};
+  nav.heading_rad = 0.3f;
+  GuidanceSetpoint out;
+  (void)explorer->step(nav, scan, out);  // starts the tree: later steps are off the waypoint
+  for (auto _ : state) {
+    scan.stamp += Duration::from_ms(25);
+    benchmark::DoNotOptimize(explorer->step(nav, scan, out));
+    benchmark::DoNotOptimize(out);
+  }
+  state.SetItemsProcessed(state.iterations() * beams);
+}
+
+void srt_arrival(benchmark::State& state, uint16_t beams, double fov_deg) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  (void)planner->configure(SrtParams{}, GuidanceParams{});
+  LaserScan scan = room_scan(beams, fov_deg, 2.0, 1.5, 0.3, 6.0, 4.0);
+  bool fresh = false;
+  for (auto _ : state) {
+    state.PauseTiming();
+    planner->reset();
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(planner->update({2.0f, 1.5f, 0.3f}, scan, TimeUs{}, fresh));
+  }
+}
+
+void BM_GuidanceStepUrg(benchmark::State& s) { guidance_step(s, 682, 240.0); }
+void BM_GuidanceStepUtm(benchmark::State& s) { guidance_step(s, 1081, 270.0); }
+void BM_SrtArrivalUrg(benchmark::State& s) { srt_arrival(s, 682, 240.0); }
+void BM_SrtArrivalUtm(benchmark::State& s) { srt_arrival(s, 1081, 270.0); }
+BENCHMARK(BM_GuidanceStepUrg)->Name("exploration/guidance_step/urg04lx_682");
+BENCHMARK(BM_GuidanceStepUtm)->Name("exploration/guidance_step/utm30lx_1081");
+BENCHMARK(BM_SrtArrivalUrg)->Name("exploration/srt_arrival/urg04lx_682");
+BENCHMARK(BM_SrtArrivalUtm)->Name("exploration/srt_arrival/utm30lx_1081");
+
+}  // namespace

@@ -1,0 +1,67 @@
+#pragma once
+// One small interface over the three exploration strategies the closed-loop mission compares
+// side by side on the same worlds and seeds:
+//   blend      paper 002 Algorithm 1: wall-following field + SRT-Star frontier velocity,
+//              heading towards the waypoint (GuidanceSetpoint kVelocity);
+//   wallfollow the wall-following field alone (section III), the baseline paper 002 improves
+//              on (kVelocity);
+//   srt        SRT-Star alone, its waypoints sent straight to the controller as position
+//              set-points, as in Freda and Oriolo's original (kPosition).
+// An explorer is configured once at start-up and then stepped once per laser scan with the
+// newest navigation state; it never allocates after configuration.
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "kestrel/core/messages.hpp"
+#include "kestrel/core/se2.hpp"
+#include "kestrel/core/status.hpp"
+#include "kestrel/exploration/beam_geometry.hpp"
+#include "kestrel/exploration/params.hpp"
+#include "kestrel/exploration/srt_star_planner.hpp"
+#include "kestrel/exploration/wall_follow_field.hpp"
+
+namespace kestrel::exploration {
+
+enum class ExplorerKind : uint8_t { kBlend, kWallFollow, kSrt };
+const char* to_string(ExplorerKind k);
+// "blend", "wallfollow" or "srt"; kInvalidArgument otherwise.
+Result<ExplorerKind> parse_explorer_kind(const char* name);
+
+// What the last step did, for telemetry, tests and render.png.
+struct ExplorerStatus {
+  Status last = Status::kOk;    // of the last step (not kOk: the output was a hold)
+  uint32_t steps = 0;           // steps with usable input
+  uint32_t rejected = 0;        // steps answered with a hold
+  bool has_target = false;
+  Point2 target;                // current waypoint (blend, srt)
+  FieldResult field;            // wall-following field of the last scan (blend, wallfollow)
+  Eigen::Vector2f v_wf = Eigen::Vector2f::Zero();  // world frame, m/s, before the speed limit
+  Eigen::Vector2f v_fr = Eigen::Vector2f::Zero();  // world frame, m/s (blend)
+  float heading_target_rad = 0;                    // before the yaw-rate limit
+};
+
+class Explorer {
+ public:
+  virtual ExplorerKind kind() const = 0;
+  // kInvalidArgument for invalid parameters or geometry; the explorer is then unconfigured and
+  // every step holds.
+  virtual Status configure(const Params& params, const BeamGeometry& geometry) = 0;
+  // Forget everything learned (tree, timers, heading command); keep the configuration.
+  virtual void reset() = 0;
+  // One guidance cycle on the scan just received and the newest navigation state. Always
+  // writes a set-point. On bad input (unconfigured: kNotFound; invalid or non-finite NavState:
+  // kNotFinite; empty scan: kNoData; scan of another geometry: kInvalidArgument; time going
+  // backwards: kTimeJump) it writes a hold: kVelocity with zero velocity at the last good
+  // position, heading held, and leaves the exploration state untouched.
+  virtual Status step(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& out) = 0;
+  // Nothing left to explore (the SRT root owns no frontier); never for wallfollow.
+  virtual bool finished() const = 0;
+  // The SRT-Star planner (tree, frontiers, waypoint) for introspection; nullptr for wallfollow.
+  virtual const SrtStarPlanner* planner() const = 0;
+  virtual const ExplorerStatus& status() const = 0;
+
+ protected:
+  ~Explorer() = default;
+};
+
+}  // namespace kestrel::exploration

@@ -1,0 +1,60 @@
+#pragma once
+// SRT-Star perception, paper 002 section IV after Freda and Oriolo (ICRA 2005): the scan is
+// divided into equal angular sectors. A sector's radius is its nearest return (at most the
+// perception range R_p): the circular sector of that radius is obstacle-free, and the union of
+// the sectors is the star-shaped Local Safe Region of the waypoint. Each sector has a left, a
+// mid and a right point (Fig. 3): the mid-point is a frontier when the whole sector is
+// obstacle-free (no return within R_p); the left or right point is a frontier when the sector
+// reaches much farther than its neighbour on that side (a range discontinuity: a doorway, the
+// end of a wall).
+//
+// Beam classes: a return within R_p is an obstacle; kNoReturn or a return beyond R_p is free;
+// kTooNear is an obstacle at zero range; kDropout and kDeflected say nothing, so a sector that
+// holds one is not obstacle-free but its radius comes from its other beams (a sector of only
+// such beams has radius zero).
+#include <array>
+#include <cstdint>
+
+#include "kestrel/core/messages.hpp"
+#include "kestrel/core/static_vector.hpp"
+#include "kestrel/core/status.hpp"
+#include "kestrel/exploration/params.hpp"
+
+namespace kestrel::exploration {
+
+enum class FrontierKind : uint8_t { kMid, kLeft, kRight };
+const char* to_string(FrontierKind k);
+
+// A frontier of one scan, in the body frame of the scan.
+struct LocalFrontier {
+  uint8_t sector = 0;
+  FrontierKind kind = FrontierKind::kMid;
+  float angle_rad = 0;  // body frame
+  float range_m = 0;
+};
+
+class SectorScan {
+ public:
+  // Sectors of `scan` with params.sector_count sectors (the count is capped by the beam count).
+  // kInvalidArgument for bad params or a scan without beams or angles; the object is then empty.
+  Status build(const LaserScan& scan, const SrtParams& params);
+
+  uint16_t count() const { return count_; }
+  // Sector s spans body angles [start + s * width, start + (s + 1) * width), width > 0.
+  float start_rad() const { return start_rad_; }
+  float width_rad() const { return width_rad_; }
+  float mid_angle(uint16_t s) const { return start_rad_ + (static_cast<float>(s) + 0.5f) * width_rad_; }
+  uint16_t radius_mm(uint16_t s) const { return radius_mm_[s]; }
+  bool obstacle_free(uint16_t s) const { return free_[s]; }
+  const IVector<LocalFrontier>& frontiers() const { return frontiers_; }
+
+ private:
+  std::array<uint16_t, kMaxSectors> radius_mm_{};
+  std::array<bool, kMaxSectors> free_{};
+  StaticVector<LocalFrontier, kMaxLocalFrontiers> frontiers_;
+  float start_rad_ = 0;
+  float width_rad_ = 0;
+  uint16_t count_ = 0;
+};
+
+}  // namespace kestrel::exploration

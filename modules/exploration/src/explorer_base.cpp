@@ -1,0 +1,117 @@
+#include "kestrel/exploration/explorer_base.hpp"
+
+#include <cmath>
+#include <cstring>
+
+namespace kestrel::exploration {
+
+const char* to_string(ExplorerKind k) {
+  switch (k) {
+    case ExplorerKind::kBlend: return "blend";
+    case ExplorerKind::kWallFollow: return "wallfollow";
+    case ExplorerKind::kSrt: return "srt";
+  }
+  return "unknown";
+}
+
+Result<ExplorerKind> parse_explorer_kind(const char* name) {
+  if (name == nullptr) return Status::kInvalidArgument;
+  for (ExplorerKind k : {ExplorerKind::kBlend, ExplorerKind::kWallFollow, ExplorerKind::kSrt})
+    if (std::strcmp(name, to_string(k)) == 0) return k;
+  return Status::kInvalidArgument;
+}
+
+Status ExplorerBase::configure(const Params& params, const BeamGeometry& geometry) {
+  configured_ = false;
+  if (params.validate() != Status::kOk) return Status::kInvalidArgument;
+  if (field_.configure(geometry, params.wall) != Status::kOk) return Status::kInvalidArgument;
+  params_ = params;
+  if (configure_strategy() != Status::kOk) return Status::kInvalidArgument;
+  configured_ = true;
+  reset();
+  return Status::kOk;
+}
+
+void ExplorerBase::reset() {
+  yaw_ = YawRateLimiter{};
+  have_position_ = false;
+  have_time_ = false;
+  status_ = ExplorerStatus{};
+  reset_strategy();
+}
+
+void ExplorerBase::hold(const NavState& nav, TimeUs now, GuidanceSetpoint& out) const {
+  out = GuidanceSetpoint{};
+  out.stamp = now;
+  out.mode = GuidanceSetpoint::Mode::kVelocity;
+  Point2 p = last_position_;
+  if (!have_position_ && std::isfinite(nav.position_m.x()) && std::isfinite(nav.position_m.y()))
+    p = {nav.position_m.x(), nav.position_m.y()};
+  out.position_m = {p.x, p.y, params_.guidance.altitude_m};
+  out.velocity_mps.setZero();
+  if (yaw_.initialised())
+    out.heading_rad = yaw_.command();
+  else
+    out.heading_rad = std::isfinite(nav.heading_rad) ? nav.heading_rad : 0.0f;
+}
+
+Status ExplorerBase::step(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& out) {
+  const TimeUs now = scan.stamp;
+  Status st = Status::kOk;
+  if (!configured_) {
+    st = Status::kNotFound;
+  } else if (!nav.valid || !std::isfinite(nav.position_m.x()) || !std::isfinite(nav.position_m.y()) ||
+             !std::isfinite(nav.heading_rad)) {
+    st = Status::kNotFinite;
+  } else if (scan.beam_count == 0) {
+    st = Status::kNoData;
+  } else if (!field_.geometry().matches(scan)) {
+    st = Status::kInvalidArgument;
+  } else if (have_time_ && now < last_time_) {
+    st = Status::kTimeJump;
+  }
+  if (st != Status::kOk) {
+    hold(nav, now, out);
+    status_.last = st;
+    ++status_.rejected;
+    return st;
+  }
+
+  const Pose2 pose{nav.position_m.x(), nav.position_m.y(), nav.heading_rad};
+  if (!yaw_.initialised()) yaw_.reset(nav.heading_rad, now);
+  last_time_ = now;
+  have_time_ = true;
+  last_position_ = {pose.x, pose.y};
+  have_position_ = true;
+
+  out = GuidanceSetpoint{};
+  out.stamp = now;
+  out.position_m = {pose.x, pose.y, params_.guidance.altitude_m};
+  float heading_target = yaw_.command();
+  st = plan(pose, scan, now, out, heading_target);
+  if (st != Status::kOk) {
+    hold(nav, now, out);
+    status_.last = st;
+    ++status_.rejected;
+    return st;
+  }
+  out.position_m.z() = params_.guidance.altitude_m;
+  if (out.mode == GuidanceSetpoint::Mode::kVelocity) {
+    const Eigen::Vector2f v = limit_speed(out.velocity_mps.head<2>(), params_.guidance.speed_limit_mps);
+    out.velocity_mps = {v.x(), v.y(), 0.0f};
+  }
+  status_.heading_target_rad = heading_target;
+  out.heading_rad = yaw_.step(heading_target, now, params_.guidance.yaw_rate_limit_radps);
+  status_.last = Status::kOk;
+  ++status_.steps;
+  return Status::kOk;
+}
+
+Eigen::Vector2f ExplorerBase::wall_following_velocity(const LaserScan& scan, float heading_rad) {
+  // The geometry was checked by step(), so the field cannot refuse the scan.
+  (void)field_.body_velocity(scan, status_.field);
+  status_.v_wf = WallFollowField::to_inertial(status_.field.body_mps, heading_rad);
+  return status_.v_wf;
+}
+
+}  // namespace kestrel::exploration

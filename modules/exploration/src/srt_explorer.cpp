@@ -1,0 +1,22 @@
+#include "kestrel/exploration/srt_explorer.hpp"
+
+#include <cmath>
+
+namespace kestrel::exploration {
+
+Status SrtExplorer::plan(const Pose2& pose, const LaserScan& scan, TimeUs now, GuidanceSetpoint& out,
+                         float& heading_target) {
+  bool new_waypoint = false;
+  if (Status st = planner_.update(pose, scan, now, new_waypoint); st != Status::kOk) return st;
+  const Point2 wp = planner_.waypoint();
+  status_.has_target = planner_.has_waypoint();
+  status_.target = wp;
+  const float dx = wp.x - pose.x, dy = wp.y - pose.y;
+  if (dx * dx + dy * dy > 1e-4f) heading_target = std::atan2(dy, dx);
+  out.mode = GuidanceSetpoint::Mode::kPosition;
+  out.position_m = {wp.x, wp.y, 0.0f};
+  out.velocity_mps.setZero();
+  return Status::kOk;
+}
+
+}  // namespace kestrel::exploration

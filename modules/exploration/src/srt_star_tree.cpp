@@ -1,0 +1,104 @@
+#include "kestrel/exploration/srt_star_tree.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kestrel/core/angle.hpp"
+
+namespace kestrel::exploration {
+
+int SrtNode::sector_of(Point2 p) const {
+  const float a = std::atan2(p.y - position.y, p.x - position.x);
+  float rel = a - sector_start_rad;
+  // Bring rel into [0, 2 pi): the sectors start at sector_start_rad and go counter-clockwise.
+  rel = wrap_angle(rel);
+  if (rel < 0.0f) rel += 2.0f * kPi<float>;
+  const float idx = rel / sector_width_rad;
+  if (!(idx >= 0.0f) || idx >= static_cast<float>(sector_count)) return -1;
+  return static_cast<int>(idx);
+}
+
+bool SrtNode::contains(Point2 p, float margin_m) const {
+  const float dx = p.x - position.x, dy = p.y - position.y;
+  const float d2 = dx * dx + dy * dy;
+  const float reach = static_cast<float>(reach_mm) * 1e-3f - margin_m;
+  if (reach <= 0.0f || d2 >= reach * reach) return false;
+  const int s = sector_of(p);
+  if (s < 0) return false;
+  const float r = static_cast<float>(radius_mm[static_cast<std::size_t>(s)]) * 1e-3f - margin_m;
+  return r > 0.0f && d2 < r * r;
+}
+
+void SrtStarTree::clear() {
+  nodes_.clear();
+  frontiers_.clear();
+}
+
+bool SrtStarTree::in_safe_region(Point2 p, float margin_m, uint16_t except) const {
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    if (i != except && nodes_[i].contains(p, margin_m)) return true;
+  return false;
+}
+
+Status SrtStarTree::add_node(const Pose2& pose, const SectorScan& sectors, uint16_t parent,
+                             uint16_t& id) {
+  id = kNoNode;
+  if (!pose.finite() || sectors.count() == 0) return Status::kInvalidArgument;
+  if (parent != kNoNode && parent >= nodes_.size()) return Status::kInvalidArgument;
+  if (nodes_.full()) return Status::kCapacityExceeded;
+
+  SrtNode node;
+  node.position = {pose.x, pose.y};
+  node.heading_rad = pose.theta;
+  node.sector_start_rad = wrap_angle(pose.theta + sectors.start_rad());
+  node.sector_width_rad = sectors.width_rad();
+  node.sector_count = sectors.count();
+  node.parent = parent;
+  for (uint16_t s = 0; s < sectors.count(); ++s) {
+    node.radius_mm[s] = sectors.radius_mm(s);
+    node.reach_mm = std::max(node.reach_mm, sectors.radius_mm(s));
+  }
+  (void)nodes_.push_back(node);  // cannot fail: checked full() above
+  id = static_cast<uint16_t>(nodes_.size() - 1);
+  const SrtNode& added = nodes_.back();
+
+  // Frontiers of older nodes now seen past.
+  for (std::size_t i = 0; i < frontiers_.size();) {
+    if (added.contains(frontiers_[i].position, coverage_margin_m)) {
+      frontiers_.swap_remove(i);
+      ++frontiers_removed_;
+    } else {
+      ++i;
+    }
+  }
+  // The new node's frontiers, unless an older safe region already covers them.
+  const float c = std::cos(pose.theta), s = std::sin(pose.theta);
+  for (const LocalFrontier& lf : sectors.frontiers()) {
+    const float bx = lf.range_m * std::cos(lf.angle_rad), by = lf.range_m * std::sin(lf.angle_rad);
+    Frontier f;
+    f.position = {pose.x + c * bx - s * by, pose.y + s * bx + c * by};
+    f.node = id;
+    f.sector = lf.sector;
+    f.kind = lf.kind;
+    if (in_safe_region(f.position, coverage_margin_m, id)) continue;
+    if (!frontiers_.push_back(f)) ++frontiers_dropped_;
+  }
+  return Status::kOk;
+}
+
+std::size_t SrtStarTree::frontier_count_of(uint16_t node) const {
+  std::size_t n = 0;
+  for (const Frontier& f : frontiers_) n += f.node == node ? 1 : 0;
+  return n;
+}
+
+std::size_t SrtStarTree::frontier_index_of(uint16_t node, std::size_t k) const {
+  for (std::size_t i = 0; i < frontiers_.size(); ++i) {
+    if (frontiers_[i].node != node) continue;
+    if (k == 0) return i;
+    --k;
+  }
+  return frontiers_.size();
+}
+
+}  // namespace kestrel::exploration

@@ -1,0 +1,279 @@
+// The three explorers behind one interface: Algorithm 1's blending (equations 1, 5, 6), the
+// limits of section V, the defined hold on every bad input, and no heap in the guidance step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "kestrel/core/alloc_guard.hpp"
+#include "kestrel/exploration/blend_explorer.hpp"
+#include "kestrel/exploration/srt_explorer.hpp"
+#include "kestrel/exploration/wall_follow_explorer.hpp"
+#include "synthetic_world.hpp"
+
+namespace kestrel::exploration {
+namespace {
+
+using test::LaserModel;
+using test::SegmentWorld;
+using test::uniform_scan;
+
+const LaserModel kUrg = LaserModel::urg04lx();
+
+NavState nav_at(float x, float y, float heading) {
+  NavState n;
+  n.valid = true;
+  n.position_m = {x, y, 1.0f};
+  n.heading_rad = heading;
+  return n;
+}
+
+SegmentWorld hall() {
+  SegmentWorld w;
+  w.add_box(-3, -2, 9, 2);
+  return w;
+}
+
+TEST(Explorer, KindsParseAndPrint) {
+  EXPECT_EQ(parse_explorer_kind("blend").value(), ExplorerKind::kBlend);
+  EXPECT_EQ(parse_explorer_kind("wallfollow").value(), ExplorerKind::kWallFollow);
+  EXPECT_EQ(parse_explorer_kind("srt").value(), ExplorerKind::kSrt);
+  EXPECT_EQ(parse_explorer_kind("Blend").status(), Status::kInvalidArgument);
+  EXPECT_EQ(parse_explorer_kind(nullptr).status(), Status::kInvalidArgument);
+  EXPECT_STREQ(to_string(ExplorerKind::kWallFollow), "wallfollow");
+  BlendExplorer b;
+  WallFollowExplorer w;
+  SrtExplorer s;
+  const Explorer* all[] = {&b, &w, &s};
+  EXPECT_EQ(all[0]->kind(), ExplorerKind::kBlend);
+  EXPECT_EQ(all[1]->planner(), nullptr);
+  EXPECT_NE(all[2]->planner(), nullptr);
+}
+
+TEST(BlendExplorer, CommandIsWallFollowingPlusFrontierVelocityTowardsTheWaypoint) {
+  auto ex = std::make_unique<BlendExplorer>();
+  Params p;
+  p.guidance.speed_limit_mps = 100.0f;  // out of the way: check equations 1 and 5 exactly
+  p.guidance.yaw_rate_limit_radps = 100.0f;
+  const SegmentWorld w = hall();
+  LaserScan scan = w.scan(kUrg, 0, 0, 0.2);
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
+  GuidanceSetpoint out;
+  ASSERT_EQ(ex->step(nav_at(0, 0, 0.2f), scan, out), Status::kOk);
+  // Step again from a point off the waypoint, 0.1 s later.
+  scan = w.scan(kUrg, 0.4, -0.3, 0.2, TimeUs{100000});
+  ASSERT_EQ(ex->step(nav_at(0.4f, -0.3f, 0.2f), scan, out), Status::kOk);
+  const ExplorerStatus& st = ex->status();
+  ASSERT_TRUE(st.has_target);
+  const Point2 wp = st.target;
+  EXPECT_EQ(out.mode, GuidanceSetpoint::Mode::kVelocity);
+  EXPECT_NEAR(st.v_fr.x(), p.guidance.gain_fr * (wp.x - 0.4f), 1e-5);  // equation 5
+  EXPECT_NEAR(st.v_fr.y(), p.guidance.gain_fr * (wp.y + 0.3f), 1e-5);
+  EXPECT_GT(st.field.in_range, 100);
+  const Eigen::Vector2f v_wf = WallFollowField::to_inertial(st.field.body_mps, 0.2f);
+  EXPECT_NEAR(out.velocity_mps.x(), v_wf.x() + st.v_fr.x(), 1e-5);  // equation 1
+  EXPECT_NEAR(out.velocity_mps.y(), v_wf.y() + st.v_fr.y(), 1e-5);
+  EXPECT_NEAR(out.heading_rad, std::atan2(wp.y + 0.3f, wp.x - 0.4f), 1e-5);  // equation 6
+  EXPECT_FLOAT_EQ(out.position_m.z(), p.guidance.altitude_m);
+  EXPECT_EQ(out.stamp, TimeUs{100000});
+}
+
+TEST(BlendExplorer, SpeedLimitCapsTheSum) {
+  auto ex = std::make_unique<BlendExplorer>();
+  Params p;
+  p.guidance.gain_fr = 50.0f;  // a far waypoint would command tens of m/s
+  const SegmentWorld w = hall();
+  const LaserScan scan = w.scan(kUrg, 0, 0, 0);
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
+  GuidanceSetpoint out;
+  ASSERT_EQ(ex->step(nav_at(0, 0, 0), scan, out), Status::kOk);
+  EXPECT_NEAR(out.velocity_mps.head<2>().norm(), p.guidance.speed_limit_mps, 1e-5);
+  EXPECT_GT((ex->status().v_wf + ex->status().v_fr).norm(), 10.0f);
+  // Direction kept.
+  const Eigen::Vector2f sum = (ex->status().v_wf + ex->status().v_fr).normalized();
+  EXPECT_NEAR(out.velocity_mps.head<2>().normalized().dot(sum), 1.0f, 1e-5);
+}
+
+TEST(BlendExplorer, YawRateLimitSlewsTheHeadingCommand) {
+  auto ex = std::make_unique<BlendExplorer>();
+  Params p;
+  p.guidance.yaw_rate_limit_radps = 0.5f;
+  // Facing north across the 4 m hall: the only frontiers are east, 90 degrees off the nose.
+  const SegmentWorld w = hall();
+  const float heading = static_cast<float>(M_PI / 2);
+  LaserScan scan = w.scan(kUrg, 0, 0, heading);
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
+  GuidanceSetpoint out;
+  ASSERT_EQ(ex->step(nav_at(0, 0, heading), scan, out), Status::kOk);
+  ASSERT_TRUE(ex->status().has_target);
+  float prev = out.heading_rad;
+  EXPECT_FLOAT_EQ(prev, heading);  // first step: no time has passed
+  const float target = ex->status().heading_target_rad;
+  ASSERT_GT(std::fabs(angle_diff(target, heading)), 0.3f);
+  for (int k = 1; k <= 10; ++k) {
+    scan.stamp = TimeUs{k * 100000};
+    ASSERT_EQ(ex->step(nav_at(0, 0, heading), scan, out), Status::kOk);
+    const float turn = std::fabs(angle_diff(out.heading_rad, prev));
+    EXPECT_LE(turn, 0.5f * 0.1f + 1e-5f);
+    prev = out.heading_rad;
+  }
+  EXPECT_NEAR(std::fabs(angle_diff(out.heading_rad, heading)),
+              std::min(0.5f, std::fabs(angle_diff(target, heading))), 1e-4);
+}
+
+TEST(BlendExplorer, WaypointTimeLimitRestartsExploration) {
+  auto ex = std::make_unique<BlendExplorer>();
+  Params p;
+  p.guidance.waypoint_time_limit_s = 5.0f;
+  const SegmentWorld w = hall();
+  LaserScan scan = w.scan(kUrg, 0, 0, 0);
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
+  GuidanceSetpoint out;
+  for (int k = 0; k <= 60; ++k) {  // hovering in place for 6 s: never reaches the waypoint
+    scan.stamp = TimeUs{k * 100000};
+    ASSERT_EQ(ex->step(nav_at(0, 0, 0), scan, out), Status::kOk);
+  }
+  EXPECT_EQ(ex->planner()->restarts(), 1u);
+  EXPECT_EQ(ex->planner()->last_restart_reason(), RestartReason::kTimeout);
+  EXPECT_EQ(ex->planner()->tree().nodes().size(), 1u);
+}
+
+TEST(SrtExplorer, SendsTheWaypointAsAPositionSetpoint) {
+  auto ex = std::make_unique<SrtExplorer>();
+  const SegmentWorld w = hall();
+  const LaserScan scan = w.scan(kUrg, 0, 0, 0);
+  ASSERT_EQ(ex->configure(Params{}, BeamGeometry::of(scan)), Status::kOk);
+  GuidanceSetpoint out;
+  ASSERT_EQ(ex->step(nav_at(0, 0, 0), scan, out), Status::kOk);
+  EXPECT_EQ(out.mode, GuidanceSetpoint::Mode::kPosition);
+  EXPECT_FLOAT_EQ(out.position_m.x(), ex->planner()->waypoint().x);
+  EXPECT_FLOAT_EQ(out.position_m.y(), ex->planner()->waypoint().y);
+  EXPECT_FLOAT_EQ(out.position_m.z(), Params{}.guidance.altitude_m);
+  EXPECT_EQ(out.velocity_mps, Eigen::Vector3f::Zero());
+  EXPECT_EQ(ex->status().field.in_range, 0);  // no wall-following contribution
+}
+
+TEST(WallFollowExplorer, CruisesAlongTheNearestWallKeepingItOnTheRight) {
+  auto ex = std::make_unique<WallFollowExplorer>();
+  SegmentWorld w;
+  w.add(-50, -1.0, 50, -1.0);  // a wall 1 m to the south (r_t away): the field is small
+  const LaserScan scan = w.scan(kUrg, 0, 0, 0);
+  Params p;
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
+  GuidanceSetpoint out;
+  ASSERT_EQ(ex->step(nav_at(0, 0, 0), scan, out), Status::kOk);
+  EXPECT_EQ(out.mode, GuidanceSetpoint::Mode::kVelocity);
+  EXPECT_FALSE(ex->finished());
+  // Wall south -> travel east (the nearest beam is found to the mm: a few beams of slack).
+  EXPECT_NEAR(ex->status().heading_target_rad, 0.0f, 0.05f);
+  EXPECT_GT(out.velocity_mps.x(), 0.2f);
+  // Pure field when the cruise is off: the heading is held.
+  p.guidance.cruise_speed_mps = 0.0f;
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
+  ASSERT_EQ(ex->step(nav_at(0, 0, 0.3f), scan, out), Status::kOk);
+  EXPECT_FLOAT_EQ(out.heading_rad, 0.3f);
+}
+
+// Every explorer answers bad input with a hold and keeps its exploration state.
+class BadInput : public ::testing::TestWithParam<ExplorerKind> {
+ protected:
+  void SetUp() override {
+    switch (GetParam()) {
+      case ExplorerKind::kBlend: ex = &blend; break;
+      case ExplorerKind::kWallFollow: ex = &wall; break;
+      case ExplorerKind::kSrt: ex = &srt; break;
+    }
+  }
+  static void expect_hold(const GuidanceSetpoint& out, float x, float y, float heading) {
+    EXPECT_EQ(out.mode, GuidanceSetpoint::Mode::kVelocity);
+    EXPECT_EQ(out.velocity_mps, Eigen::Vector3f::Zero());
+    EXPECT_FLOAT_EQ(out.position_m.x(), x);
+    EXPECT_FLOAT_EQ(out.position_m.y(), y);
+    EXPECT_FLOAT_EQ(out.heading_rad, heading);
+  }
+  BlendExplorer blend;
+  WallFollowExplorer wall;
+  SrtExplorer srt;
+  Explorer* ex = nullptr;
+};
+
+TEST_P(BadInput, HoldsAndReportsWithoutTouchingTheTree) {
+  const SegmentWorld w = hall();
+  LaserScan scan = w.scan(kUrg, 1, 0.5, 0.1, TimeUs{1000000});
+  GuidanceSetpoint out;
+  EXPECT_EQ(ex->step(nav_at(1, 0.5f, 0.1f), scan, out), Status::kNotFound);  // unconfigured
+  expect_hold(out, 1, 0.5f, 0.1f);
+  ASSERT_EQ(ex->configure(Params{}, BeamGeometry::of(scan)), Status::kOk);
+  ASSERT_EQ(ex->step(nav_at(1, 0.5f, 0.1f), scan, out), Status::kOk);
+  const float heading_cmd = out.heading_rad;
+  const std::size_t nodes = ex->planner() ? ex->planner()->tree().nodes().size() : 0;
+  const uint32_t issued = ex->planner() ? ex->planner()->waypoints_issued() : 0;
+
+  scan.stamp = TimeUs{1100000};
+  NavState nan_nav = nav_at(NAN, 0.5f, 0.1f);
+  EXPECT_EQ(ex->step(nan_nav, scan, out), Status::kNotFinite);
+  expect_hold(out, 1, 0.5f, heading_cmd);
+  NavState nan_heading = nav_at(5, 5, NAN);
+  EXPECT_EQ(ex->step(nan_heading, scan, out), Status::kNotFinite);
+  expect_hold(out, 1, 0.5f, heading_cmd);
+  NavState invalid = nav_at(5, 5, 0);
+  invalid.valid = false;
+  EXPECT_EQ(ex->step(invalid, scan, out), Status::kNotFinite);
+  LaserScan empty = scan;
+  empty.beam_count = 0;
+  EXPECT_EQ(ex->step(nav_at(5, 5, 0), empty, out), Status::kNoData);
+  expect_hold(out, 1, 0.5f, heading_cmd);
+  const LaserScan other = uniform_scan(LaserModel::utm30lx(), 2000);
+  EXPECT_EQ(ex->step(nav_at(5, 5, 0), other, out), Status::kInvalidArgument);
+  LaserScan old = scan;
+  old.stamp = TimeUs{500000};
+  EXPECT_EQ(ex->step(nav_at(5, 5, 0), old, out), Status::kTimeJump);
+  expect_hold(out, 1, 0.5f, heading_cmd);
+  EXPECT_EQ(ex->status().rejected, 6u);  // configure() reset the count of the first
+  EXPECT_EQ(ex->status().last, Status::kTimeJump);
+  if (ex->planner()) {
+    EXPECT_EQ(ex->planner()->tree().nodes().size(), nodes);
+    EXPECT_EQ(ex->planner()->waypoints_issued(), issued);
+  }
+  // Good input again works; a bad configuration leaves the explorer holding.
+  EXPECT_EQ(ex->step(nav_at(1, 0.5f, 0.1f), scan, out), Status::kOk);
+  Params bad;
+  bad.guidance.speed_limit_mps = -1.0f;
+  EXPECT_EQ(ex->configure(bad, BeamGeometry::of(scan)), Status::kInvalidArgument);
+  EXPECT_EQ(ex->step(nav_at(1, 0.5f, 0.1f), scan, out), Status::kNotFound);
+}
+
+TEST_P(BadInput, GuidanceStepNeverAllocates) {
+  const SegmentWorld w = hall();
+  const LaserScan first = w.scan(kUrg, 0, 0, 0);
+  Params p;
+  p.guidance.waypoint_time_limit_s = 2.0f;  // include restarts
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(first)), Status::kOk);
+  // Scans made before arming: the step itself is what is measured.
+  std::vector<LaserScan> scans;
+  std::vector<NavState> navs;
+  float x = 0, y = 0;
+  for (int k = 0; k < 200; ++k) {
+    x = 3.0f * std::sin(0.05f * k);
+    y = 1.0f * std::sin(0.031f * k);
+    scans.push_back(w.scan(kUrg, x, y, 0.02 * k, TimeUs{k * 100000}));
+    navs.push_back(nav_at(x, y, 0.02f * k));
+  }
+  navs[50].position_m.x() = NAN;
+  scans[60].beam_count = 0;
+  GuidanceSetpoint out;
+  alloc_guard::Scope guard;
+  for (std::size_t k = 0; k < scans.size(); ++k) (void)ex->step(navs[k], scans[k], out);
+  EXPECT_EQ(guard.allocations(), 0u);
+  EXPECT_TRUE(alloc_guard::active());
+  if (ex->planner()) {
+    EXPECT_GE(ex->planner()->waypoints_issued(), 2u);  // arrivals or restarts did happen
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllExplorers, BadInput,
+                         ::testing::Values(ExplorerKind::kBlend, ExplorerKind::kWallFollow, ExplorerKind::kSrt),
+                         [](const auto& param_info) { return std::string(to_string(param_info.param)); });
+
+}  // namespace
+}  // namespace kestrel::exploration

@@ -1,0 +1,153 @@
+// SRT-Star perception (paper 002 section IV, Fig. 3): sectors, safe-region radii and frontier
+// classification on synthetic scans.
+#include "kestrel/exploration/sector_scan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "synthetic_world.hpp"
+
+namespace kestrel::exploration {
+namespace {
+
+using test::LaserModel;
+using test::SegmentWorld;
+using test::uniform_scan;
+
+int count_kind(const SectorScan& s, FrontierKind k) {
+  int n = 0;
+  for (const LocalFrontier& f : s.frontiers()) n += f.kind == k ? 1 : 0;
+  return n;
+}
+
+class SectorTest : public ::testing::Test {
+ protected:
+  std::unique_ptr<SectorScan> sectors = std::make_unique<SectorScan>();
+  SrtParams params;
+  LaserModel urg = LaserModel::urg04lx();
+};
+
+TEST_F(SectorTest, OpenSpaceMakesEverySectorFreeWithItsMidPointAFrontier) {
+  ASSERT_EQ(sectors->build(uniform_scan(urg, range_code::kNoReturn), params), Status::kOk);
+  ASSERT_EQ(sectors->count(), params.sector_count);
+  EXPECT_NEAR(sectors->width_rad() * sectors->count(), urg.fov_rad, 1e-5);
+  EXPECT_NEAR(sectors->start_rad(), -urg.fov_rad / 2, 1e-5);
+  for (uint16_t s = 0; s < sectors->count(); ++s) {
+    EXPECT_TRUE(sectors->obstacle_free(s));
+    EXPECT_EQ(sectors->radius_mm(s), 3500);
+  }
+  EXPECT_EQ(count_kind(*sectors, FrontierKind::kMid), params.sector_count);
+  EXPECT_EQ(count_kind(*sectors, FrontierKind::kLeft) + count_kind(*sectors, FrontierKind::kRight), 0);
+  const LocalFrontier& f = sectors->frontiers()[3];
+  EXPECT_FLOAT_EQ(f.range_m, 3.5f);
+  EXPECT_NEAR(f.angle_rad, sectors->mid_angle(f.sector), 1e-6);
+}
+
+TEST_F(SectorTest, ReturnsBeyondPerceptionRangeStillCountAsFree) {
+  ASSERT_EQ(sectors->build(uniform_scan(urg, 3800), params), Status::kOk);
+  EXPECT_EQ(count_kind(*sectors, FrontierKind::kMid), params.sector_count);
+}
+
+TEST_F(SectorTest, FullyEnclosedRoomHasNoFrontier) {
+  SegmentWorld room;
+  room.add_box(-2.0, -1.5, 2.5, 1.5);
+  for (double heading : {0.0, 0.7, 2.0, -2.5}) {
+    ASSERT_EQ(sectors->build(room.scan(urg, 0.2, 0.1, heading), params), Status::kOk);
+    EXPECT_TRUE(sectors->frontiers().empty()) << "heading " << heading;
+    for (uint16_t s = 0; s < sectors->count(); ++s) EXPECT_FALSE(sectors->obstacle_free(s));
+  }
+}
+
+TEST_F(SectorTest, DoorwayGivesDiscontinuityFrontiersOnTheFarSide) {
+  // A wall 1 m ahead with a 1.4 m doorway; behind it a room whose far wall is 3 m away.
+  SegmentWorld w;
+  w.add(-1.0, -1.2, -1.0, 1.2);  // the small room the vehicle is in
+  w.add(-1.0, -1.2, 1.0, -1.2);
+  w.add(-1.0, 1.2, 1.0, 1.2);
+  w.add(1.0, -3.0, 1.0, -0.7);   // its front wall with the doorway, shared with the next room
+  w.add(1.0, 0.7, 1.0, 3.0);
+  w.add(1.0, -3.0, 3.0, -3.0);   // the next room
+  w.add(1.0, 3.0, 3.0, 3.0);
+  w.add(3.0, -3.0, 3.0, 3.0);
+  ASSERT_EQ(sectors->build(w.scan(urg, 0, 0, 0), params), Status::kOk);
+  EXPECT_EQ(count_kind(*sectors, FrontierKind::kMid), 0);  // the far wall is within R_p
+  ASSERT_EQ(count_kind(*sectors, FrontierKind::kRight), 1);
+  ASSERT_EQ(count_kind(*sectors, FrontierKind::kLeft), 1);
+  for (const LocalFrontier& f : sectors->frontiers()) {
+    // Both on the doorway's edges, in the far-reaching sectors, at their radius (about 3 m).
+    EXPECT_LT(std::fabs(f.angle_rad), std::atan2(0.7, 1.0) + 0.01);
+    EXPECT_GT(f.range_m, 2.9f);
+    EXPECT_GT(sectors->radius_mm(f.sector), 2900);
+    const uint16_t nb = f.kind == FrontierKind::kRight ? f.sector - 1 : f.sector + 1;
+    EXPECT_LT(sectors->radius_mm(nb), 1500) << "the neighbour beyond the edge is the wall";
+  }
+}
+
+TEST_F(SectorTest, SmallStepsAreNotDiscontinuities) {
+  SegmentWorld w;
+  w.add(-1.0, -1.2, -1.0, 1.2);
+  w.add(-1.0, -1.2, 1.0, -1.2);
+  w.add(1.0, -1.2, 1.0, -0.7);
+  w.add(1.0, -0.7, 1.5, -0.7);
+  w.add(1.5, -0.7, 1.5, 1.2);  // a 0.5 m step in depth, below discontinuity_m = 1 m
+  w.add(-1.0, 1.2, 1.5, 1.2);
+  ASSERT_EQ(sectors->build(w.scan(urg, 0, 0, 0), params), Status::kOk);
+  EXPECT_TRUE(sectors->frontiers().empty());
+}
+
+TEST_F(SectorTest, RangeCodesHaveTheirDocumentedMeaning) {
+  LaserScan s = uniform_scan(urg, range_code::kNoReturn);
+  // Sector 0 holds beams 0..21 of 682 with 32 sectors.
+  s.range_mm[3] = range_code::kTooNear;
+  ASSERT_EQ(sectors->build(s, params), Status::kOk);
+  EXPECT_FALSE(sectors->obstacle_free(0));
+  EXPECT_EQ(sectors->radius_mm(0), 0);
+  s.range_mm[3] = range_code::kDropout;
+  ASSERT_EQ(sectors->build(s, params), Status::kOk);
+  EXPECT_FALSE(sectors->obstacle_free(0));  // unknown: not known to be free
+  EXPECT_EQ(sectors->radius_mm(0), 3500);   // the other beams saw nothing within R_p
+  for (int i = 0; i < 21; ++i) s.range_mm[i] = range_code::kDeflected;
+  ASSERT_EQ(sectors->build(s, params), Status::kOk);
+  EXPECT_EQ(sectors->radius_mm(0), 0);  // nothing seen at all
+}
+
+TEST_F(SectorTest, ClockwiseScanGivesTheSameSectorsAsCounterClockwise) {
+  SegmentWorld w;
+  w.add(1.0, -10, 1.0, -0.2);
+  w.add(2.5, -0.2, 2.5, 10);
+  w.add(-1.0, -10, -1.0, 10);
+  LaserScan ccw = w.scan(urg, 0, 0, 0);
+  LaserScan cw = ccw;
+  cw.first_angle_rad = ccw.angle_of(ccw.beam_count - 1);
+  cw.angle_step_rad = -ccw.angle_step_rad;
+  for (int i = 0; i < ccw.beam_count; ++i) cw.range_mm[i] = ccw.range_mm[ccw.beam_count - 1 - i];
+  SectorScan a, b;
+  ASSERT_EQ(a.build(ccw, params), Status::kOk);
+  ASSERT_EQ(b.build(cw, params), Status::kOk);
+  EXPECT_NEAR(a.start_rad(), b.start_rad(), 1e-5);
+  for (uint16_t s = 0; s < a.count(); ++s) EXPECT_EQ(a.radius_mm(s), b.radius_mm(s));
+  EXPECT_EQ(a.frontiers().size(), b.frontiers().size());
+}
+
+TEST_F(SectorTest, RejectsEmptyScansAndBadParameters) {
+  LaserScan empty = uniform_scan(urg, 1000);
+  empty.beam_count = 0;
+  EXPECT_EQ(sectors->build(empty, params), Status::kInvalidArgument);
+  EXPECT_EQ(sectors->count(), 0);
+  LaserScan nan_angle = uniform_scan(urg, 1000);
+  nan_angle.angle_step_rad = NAN;
+  EXPECT_EQ(sectors->build(nan_angle, params), Status::kInvalidArgument);
+  SrtParams bad;
+  bad.sector_count = kMaxSectors + 1;
+  EXPECT_EQ(sectors->build(uniform_scan(urg, 1000), bad), Status::kInvalidArgument);
+  // Fewer beams than sectors: one beam per sector.
+  LaserScan few = uniform_scan(urg, range_code::kNoReturn);
+  few.beam_count = 5;
+  ASSERT_EQ(sectors->build(few, params), Status::kOk);
+  EXPECT_EQ(sectors->count(), 5);
+}
+
+}  // namespace
+}  // namespace kestrel::exploration

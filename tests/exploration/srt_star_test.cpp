@@ -1,0 +1,307 @@
+// SRT-Star tree and waypoint sequencing (paper 002 section IV and Algorithm 1 lines 2-10; the
+// waypoint time limit of section V): safe regions, frontier removal, backtracking, the end of
+// exploration, restarts, capacity limits and determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "kestrel/exploration/srt_star_planner.hpp"
+#include "kestrel/exploration/srt_star_tree.hpp"
+#include "synthetic_world.hpp"
+
+namespace kestrel::exploration {
+namespace {
+
+using test::LaserModel;
+using test::SegmentWorld;
+using test::uniform_scan;
+
+const LaserModel kUrg = LaserModel::urg04lx();
+
+// Walls at 1 m except an opening of +-half_deg around the nose.
+LaserScan opening_scan(double half_deg) {
+  LaserScan s = uniform_scan(kUrg, 1000);
+  for (int i = 0; i < s.beam_count; ++i)
+    if (std::fabs(s.angle_of(i)) < half_deg * M_PI / 180.0) s.range_mm[i] = range_code::kNoReturn;
+  return s;
+}
+
+struct TreeFixture : ::testing::Test {
+  std::unique_ptr<SrtStarTree> tree = std::make_unique<SrtStarTree>();
+  std::unique_ptr<SectorScan> sectors = std::make_unique<SectorScan>();
+  SrtParams params;
+  uint16_t add(const Pose2& pose, const LaserScan& scan, uint16_t parent) {
+    EXPECT_EQ(sectors->build(scan, params), Status::kOk);
+    uint16_t id = kNoNode;
+    EXPECT_EQ(tree->add_node(pose, *sectors, parent, id), Status::kOk);
+    return id;
+  }
+};
+
+TEST_F(TreeFixture, SafeRegionIsTheUnionOfTheSectorsInTheWorldFrame) {
+  const uint16_t a = add({1.0f, 2.0f, static_cast<float>(M_PI / 2)}, opening_scan(10), kNoNode);
+  const SrtNode& n = tree->nodes()[a];
+  // Heading north: the opening points north, 3.5 m deep; elsewhere the walls are at 1 m.
+  EXPECT_TRUE(n.contains({1.0f, 4.5f}, 0.2f));
+  EXPECT_FALSE(n.contains({1.0f, 5.4f}, 0.2f));   // beyond R_p - margin
+  EXPECT_TRUE(n.contains({1.6f, 2.0f}, 0.2f));    // east, inside the 1 m walls
+  EXPECT_FALSE(n.contains({2.0f, 2.0f}, 0.2f));   // east, past the wall - margin
+  EXPECT_FALSE(n.contains({1.0f, 1.5f}, 0.2f));   // behind: outside the 240 degree field of view
+  EXPECT_EQ(n.sector_of({1.0f, 1.5f}), -1);
+  EXPECT_TRUE(tree->in_safe_region({1.0f, 4.0f}, 0.2f));
+  EXPECT_FALSE(tree->in_safe_region({1.0f, 4.0f}, 0.2f, a));
+}
+
+TEST_F(TreeFixture, FrontierInsideANewSafeRegionIsRemoved) {
+  // GIVEN node A whose scan opens ahead (east): frontiers about 3.5 m east
+  const uint16_t a = add({0, 0, 0}, opening_scan(10), kNoNode);
+  const std::size_t a_frontiers = tree->frontier_count_of(a);
+  ASSERT_GE(a_frontiers, 2u);
+  for (const Frontier& f : tree->frontiers()) EXPECT_GT(f.position.x, 3.0f);
+  // WHEN node B, 2 m further east, sees open space all round
+  const uint16_t b = add({2.0f, 0, 0}, uniform_scan(kUrg, range_code::kNoReturn), a);
+  // THEN A's frontiers lie inside B's safe region and are gone; B's are all new
+  EXPECT_EQ(tree->frontier_count_of(a), 0u);
+  EXPECT_EQ(tree->frontiers_removed(), a_frontiers);
+  EXPECT_EQ(tree->frontier_count_of(b), params.sector_count);
+  EXPECT_EQ(tree->nodes()[b].parent, a);
+  // AND a node whose frontiers all fall inside B's region adds none
+  const uint16_t c = add({0.5f, 0, 0}, opening_scan(10), b);
+  EXPECT_EQ(tree->frontier_count_of(c), 0u);
+}
+
+TEST_F(TreeFixture, FullTreeRefusesTheNodeAndLeavesTheTreeUnchanged) {
+  const LaserScan open = uniform_scan(kUrg, range_code::kNoReturn);
+  uint16_t parent = kNoNode;
+  for (std::size_t i = 0; i < kMaxNodes; ++i)  // far apart: no region covers another's frontiers
+    parent = add({static_cast<float>(i) * 20.0f, 0, 0}, open, parent);
+  EXPECT_TRUE(tree->full());
+  EXPECT_EQ(tree->frontiers().size(), kMaxFrontiers);
+  EXPECT_EQ(tree->frontiers_dropped(), kMaxNodes * params.sector_count - kMaxFrontiers);
+  uint16_t id = 7;
+  EXPECT_EQ(tree->add_node({-50.0f, 0, 0}, *sectors, parent, id), Status::kCapacityExceeded);
+  EXPECT_EQ(id, kNoNode);
+  EXPECT_EQ(tree->nodes().size(), kMaxNodes);
+  EXPECT_EQ(tree->add_node({NAN, 0, 0}, *sectors, kNoNode, id), Status::kInvalidArgument);
+  tree->clear();
+  EXPECT_EQ(tree->add_node({0, 0, 0}, *sectors, 3, id), Status::kInvalidArgument);  // unknown parent
+}
+
+// ---- planner -------------------------------------------------------------------------------
+
+struct Flight {
+  std::vector<PlannerMode> modes;
+  std::vector<Point2> waypoints;
+  int arrivals = 0;
+};
+
+// Teleports the vehicle onto each new waypoint, facing the way it moved, until the planner
+// finishes or `max_steps` steps pass.
+Flight teleport(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start, int max_steps) {
+  Flight fl;
+  Pose2 pose = start;
+  TimeUs t{};
+  for (int k = 0; k < max_steps && !planner.finished(); ++k) {
+    bool fresh = false;
+    EXPECT_EQ(planner.update(pose, world.scan(kUrg, pose.x, pose.y, pose.theta, t), t, fresh), Status::kOk);
+    if (fresh) {
+      fl.modes.push_back(planner.mode());
+      fl.waypoints.push_back(planner.waypoint());
+    }
+    const Point2 w = planner.waypoint();
+    if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+    pose.x = w.x;
+    pose.y = w.y;
+    ++fl.arrivals;
+    t += Duration::from_s(1.0);
+  }
+  return fl;
+}
+
+// Two dead-end corridors, east and north, meeting where the vehicle starts.
+SegmentWorld l_corridors() {
+  SegmentWorld w;
+  w.add(-0.8, -0.8, 4.0, -0.8);  // east corridor, south wall
+  w.add(4.0, -0.8, 4.0, 0.8);    // its dead end
+  w.add(0.8, 0.8, 4.0, 0.8);     // its north wall
+  w.add(0.8, 0.8, 0.8, 4.0);     // north corridor, east wall
+  w.add(0.8, 4.0, -0.8, 4.0);    // its dead end
+  w.add(-0.8, 4.0, -0.8, -0.8);  // the west wall of both
+  return w;
+}
+
+TEST(SrtStarPlanner, ExploresBothBranchesBacktracksAndFinishesOnTheRoot) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  const Flight fl = teleport(*planner, l_corridors(), {0, 0, static_cast<float>(M_PI / 4)}, 80);
+  ASSERT_TRUE(planner->finished());
+  EXPECT_EQ(planner->mode(), PlannerMode::kFinished);
+  // Back where it started, with no frontier left anywhere.
+  EXPECT_NEAR(planner->waypoint().x, 0.0f, 1e-6);
+  EXPECT_NEAR(planner->waypoint().y, 0.0f, 1e-6);
+  EXPECT_TRUE(planner->tree().frontiers().empty());
+  bool east = false, north = false;
+  for (const SrtNode& n : planner->tree().nodes()) {
+    east |= n.position.x > 1.5f;
+    north |= n.position.y > 1.5f;
+    if (n.parent != kNoNode) {
+      EXPECT_LT(n.parent, planner->tree().nodes().size());
+    }
+  }
+  EXPECT_TRUE(east);
+  EXPECT_TRUE(north);
+  int backtracks = 0;
+  for (PlannerMode m : fl.modes) backtracks += m == PlannerMode::kBacktrack ? 1 : 0;
+  EXPECT_GE(backtracks, 2);  // out of each dead end
+  EXPECT_EQ(planner->restarts(), 0u);
+}
+
+TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  bool fresh = false;
+  // Root: an opening ahead.
+  ASSERT_EQ(planner->update({0, 0, 0}, opening_scan(10), TimeUs{}, fresh), Status::kOk);
+  ASSERT_EQ(planner->mode(), PlannerMode::kForward);
+  const Point2 wp = planner->waypoint();
+  EXPECT_GT(wp.x, 1.0f);
+  EXPECT_LT(std::fabs(wp.y), 0.5f);
+  // Arrive in an enclosed spot: walls at 1 m everywhere, no frontier.
+  const Pose2 there{wp.x, wp.y, 0};
+  ASSERT_EQ(planner->update(there, uniform_scan(kUrg, 1000), TimeUs{1000000}, fresh), Status::kOk);
+  EXPECT_TRUE(fresh);
+  EXPECT_EQ(planner->mode(), PlannerMode::kBacktrack);
+  EXPECT_EQ(planner->target_node(), 0);
+  EXPECT_FLOAT_EQ(planner->waypoint().x, 0.0f);
+  EXPECT_FLOAT_EQ(planner->waypoint().y, 0.0f);
+  EXPECT_EQ(planner->tree().nodes().size(), 2u);
+  // Not yet back: nothing changes.
+  ASSERT_EQ(planner->update({0.5f, 0, 0}, uniform_scan(kUrg, 1000), TimeUs{2000000}, fresh), Status::kOk);
+  EXPECT_FALSE(fresh);
+  // Back on the root, which still owns its (once tried) frontier: forward again, no new node.
+  ASSERT_EQ(planner->update({0.05f, 0, 0}, opening_scan(10), TimeUs{3000000}, fresh), Status::kOk);
+  EXPECT_TRUE(fresh);
+  EXPECT_EQ(planner->current_node(), 0);
+  EXPECT_EQ(planner->tree().nodes().size(), 2u);
+}
+
+TEST(SrtStarPlanner, EnclosedRoomFinishesAtOnce) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  SegmentWorld room;
+  room.add_box(-2, -2, 2, 2);
+  bool fresh = false;
+  ASSERT_EQ(planner->update({0.3f, 0.2f, 1.0f}, room.scan(kUrg, 0.3, 0.2, 1.0), TimeUs{}, fresh), Status::kOk);
+  EXPECT_TRUE(planner->finished());
+  EXPECT_FLOAT_EQ(planner->waypoint().x, 0.3f);
+  EXPECT_FLOAT_EQ(planner->waypoint().y, 0.2f);
+}
+
+TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  GuidanceParams g;
+  g.waypoint_time_limit_s = 10.0f;
+  ASSERT_EQ(planner->configure({}, g), Status::kOk);
+  const SegmentWorld world = l_corridors();
+  (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);  // grow a little
+  const std::size_t grown = planner->tree().nodes().size();
+  ASSERT_GE(grown, 2u);
+  ASSERT_FALSE(planner->finished());
+  const TimeUs issued = planner->waypoint_time();
+  // The vehicle is stuck away from the waypoint.
+  const Point2 wp = planner->waypoint();
+  const Pose2 stuck{wp.x - 1.0f, wp.y, 0};
+  bool fresh = false;
+  const LaserScan scan = world.scan(kUrg, stuck.x, stuck.y, 0);
+  ASSERT_EQ(planner->update(stuck, scan, issued + Duration::from_s(9.9), fresh), Status::kOk);
+  EXPECT_FALSE(fresh);
+  EXPECT_EQ(planner->restarts(), 0u);
+  ASSERT_EQ(planner->update(stuck, scan, issued + Duration::from_s(10.1), fresh), Status::kOk);
+  EXPECT_TRUE(fresh);
+  EXPECT_EQ(planner->restarts(), 1u);
+  EXPECT_EQ(planner->last_restart_reason(), RestartReason::kTimeout);
+  ASSERT_EQ(planner->tree().nodes().size(), 1u);  // a new root where the vehicle is
+  EXPECT_FLOAT_EQ(planner->tree().nodes()[0].position.x, stuck.x);
+  EXPECT_EQ(planner->tree().nodes()[0].parent, kNoNode);
+  EXPECT_EQ(planner->waypoint_time(), issued + Duration::from_s(10.1));
+}
+
+TEST(SrtStarPlanner, FullTreeRestartsExploration) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  const SegmentWorld open_space;  // no walls: frontiers never run out
+  Pose2 pose{0, 0, 0};
+  bool fresh = false;
+  int steps = 0;
+  std::size_t most = 0;
+  for (; steps < 2000 && planner->restarts() == 0; ++steps) {
+    ASSERT_EQ(planner->update(pose, open_space.scan(kUrg, pose.x, pose.y, pose.theta), TimeUs{steps}, fresh),
+              Status::kOk);
+    most = std::max(most, planner->tree().nodes().size());
+    pose = {planner->waypoint().x, planner->waypoint().y, pose.theta};
+  }
+  EXPECT_EQ(most, kMaxNodes);
+  EXPECT_EQ(planner->restarts(), 1u);
+  EXPECT_EQ(planner->last_restart_reason(), RestartReason::kTreeFull);
+  EXPECT_EQ(planner->tree().nodes().size(), 1u);
+  EXPECT_EQ(planner->mode(), PlannerMode::kForward);
+}
+
+TEST(SrtStarPlanner, SameSeedSameWaypointsOtherSeedOtherWaypoints) {
+  const SegmentWorld world = l_corridors();
+  auto run = [&](uint32_t seed) {
+    auto planner = std::make_unique<SrtStarPlanner>();
+    SrtParams p;
+    p.seed = seed;
+    EXPECT_EQ(planner->configure(p, {}), Status::kOk);
+    return teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 80).waypoints;
+  };
+  const auto a = run(11), b = run(11), c = run(12);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].x, b[i].x);
+    EXPECT_EQ(a[i].y, b[i].y);
+  }
+  EXPECT_TRUE(a.size() != c.size() || a[0].x != c[0].x || a[0].y != c[0].y);
+}
+
+TEST(SrtStarPlanner, WaypointsStayInsideTheSectorOfAFrontier) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  SrtParams p;
+  for (uint32_t seed = 1; seed < 40; ++seed) {
+    p.seed = seed;
+    ASSERT_EQ(planner->configure(p, {}), Status::kOk);
+    bool fresh = false;
+    ASSERT_EQ(planner->update({0, 0, 0}, opening_scan(20), TimeUs{}, fresh), Status::kOk);
+    const Point2 wp = planner->waypoint();
+    const SrtNode& root = planner->tree().nodes()[0];
+    const int s = root.sector_of(wp);
+    ASSERT_GE(s, 0);
+    const float r = std::hypot(wp.x, wp.y);
+    EXPECT_LE(r, root.radius_mm[s] * 1e-3f - p.wall_clearance_m + 1e-4f);
+    EXPECT_GE(r, 2.0f * GuidanceParams{}.arrival_distance_m - 1e-4f);
+    EXPECT_LT(std::fabs(std::atan2(wp.y, wp.x)), 20.0 * M_PI / 180.0);  // in the opening
+  }
+}
+
+TEST(SrtStarPlanner, RejectsBadInputWithoutChangingState) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  SrtParams bad;
+  bad.sector_count = 1;
+  EXPECT_EQ(planner->configure(bad, {}), Status::kInvalidArgument);
+  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  bool fresh = true;
+  EXPECT_EQ(planner->update({NAN, 0, 0}, opening_scan(10), TimeUs{}, fresh), Status::kInvalidArgument);
+  EXPECT_FALSE(fresh);
+  LaserScan empty = opening_scan(10);
+  empty.beam_count = 0;
+  EXPECT_EQ(planner->update({0, 0, 0}, empty, TimeUs{}, fresh), Status::kInvalidArgument);
+  EXPECT_EQ(planner->mode(), PlannerMode::kIdle);
+  EXPECT_TRUE(planner->tree().nodes().empty());
+}
+
+}  // namespace
+}  // namespace kestrel::exploration
