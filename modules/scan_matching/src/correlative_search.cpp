@@ -165,7 +165,7 @@ void CorrelativeSearch::dfs(int k, int32_t root_bound, GridPose& best) {
   }
 }
 
-GridPose CorrelativeSearch::branch_and_bound() {
+GridPose CorrelativeSearch::branch_and_bound(const GridPose* seeds, int seed_count) {
   const int nt = 2 * half_steps_ + 1;
   for (int k = -half_steps_; k <= half_steps_; ++k) {
     rotate(k);
@@ -179,6 +179,13 @@ GridPose CorrelativeSearch::branch_and_bound() {
   if (half_steps_ >= 0) {
     rotate(0);
     best = {0, 0, 0, bound(0, 0, 0)};
+  }
+  for (int i = 0; i < seed_count; ++i) {
+    const GridPose& sd = seeds[i];
+    if (std::abs(sd.k) > half_steps_ || std::abs(sd.tx) > half_cells_ || std::abs(sd.ty) > half_cells_) continue;
+    rotate(sd.k);
+    const GridPose cand{sd.k, sd.tx, sd.ty, bound(0, sd.tx, sd.ty)};
+    if (better(cand, best)) best = cand;
   }
   for (int i = 0; i < nt; ++i) {
     const ThetaBound& t = order_[static_cast<std::size_t>(i)];

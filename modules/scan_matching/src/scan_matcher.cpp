@@ -7,6 +7,7 @@ namespace kestrel::scan_matching {
 namespace {
 
 float ceil_div(float a, float b) { return std::ceil(a / b - 1e-4f); }
+constexpr int kSeedWindow = 8;  // cells and steps of the hypothesis searches
 
 }  // namespace
 
@@ -133,8 +134,23 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   half_cells = std::clamp(half_cells, 1, cap_cells);
   half_steps = std::clamp(half_steps, 0, kMaxThetaSteps);
 
+  // Wide windows: a small search around each motion hypothesis (constant velocity, stopped)
+  // first; its optimum seeds the pruning of the full search, which stays exact.
+  std::array<GridPose, 2> seeds{};
+  int seed_count = 0;
+  if (params_.multi_resolution && half_cells > kSeedWindow && (gx != 0 || gy != 0 || gt != 0)) {
+    for (const float sign : {-1.0f, 1.0f}) {
+      const int hx = static_cast<int>(std::lround(sign * gx / res)), hy = static_cast<int>(std::lround(sign * gy / res));
+      const int hk = static_cast<int>(std::lround(sign * gt / params_.angle_step_rad));
+      const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
+                    wrap_angle(pred.theta + static_cast<float>(hk) * params_.angle_step_rad)};
+      (void)search_.setup(key_.points, c, *map, kSeedWindow, std::min(half_steps, kSeedWindow), params_.angle_step_rad);
+      const GridPose local = search_.branch_and_bound();
+      seeds[static_cast<std::size_t>(seed_count++)] = {local.k + hk, local.tx + hx, local.ty + hy, local.score};
+    }
+  }
   (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad);
-  const GridPose best = params_.multi_resolution ? search_.branch_and_bound() : search_.exhaustive();
+  const GridPose best = params_.multi_resolution ? search_.branch_and_bound(seeds.data(), seed_count) : search_.exhaustive();
   out.grid = best;
   const float denom = static_cast<float>(key_.points.count) * kCellMax;
   out.score = static_cast<float>(std::max(0, best.score)) / denom;
