@@ -104,7 +104,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   const float dt_prev = static_cast<float>((last_stamp_ - prev_stamp_).seconds());
   Pose2 pred = last_pose_;
   if (accepted_ >= 2 && dt_prev > 1e-4f) {
-    const float f = std::min(dt / dt_prev, 4.0f);
+    const float f = std::min(dt / dt_prev, 2.0f);
     pred.x += (last_pose_.x - prev_pose_.x) * f;
     pred.y += (last_pose_.y - prev_pose_.y) * f;
     pred.theta = wrap_angle(pred.theta + wrap_angle(last_pose_.theta - prev_pose_.theta) * f);
@@ -119,8 +119,9 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   pred.x += gx;
   pred.y += gy;
   pred.theta = wrap_angle(pred.theta + gt);
-  const float win_m = win_m0 + std::max(std::fabs(gx), std::fabs(gy));
-  const float win_rad = win_rad0 + std::fabs(gt);
+  // ...but never beyond the configured maximum: that bounds the worst-case time per scan.
+  const float win_m = std::min(win_m0 + std::max(std::fabs(gx), std::fabs(gy)), params_.max_window_m);
+  const float win_rad = std::min(win_rad0 + std::fabs(gt), params_.max_window_rad);
   const float res = map->resolution_m();
   // The search grid is the map's grid (and whole angle steps): a vehicle that holds still gets
   // the same answer scan after scan instead of one that wanders inside a cell.
