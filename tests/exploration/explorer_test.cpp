@@ -167,8 +167,9 @@ TEST(WallFollowExplorer, CruisesAlongTheNearestWallKeepingItOnTheRight) {
   // Wall south -> travel east (the nearest beam is found to the mm: a few beams of slack).
   EXPECT_NEAR(ex->status().heading_target_rad, 0.0f, 0.05f);
   EXPECT_GT(out.velocity_mps.x(), 0.2f);
-  // Pure field when the cruise is off: the heading is held.
+  // Pure field when the cruise and the hold are off: the heading is held.
   p.guidance.cruise_speed_mps = 0.0f;
+  p.guidance.wall_hold_gain = 0.0f;
   ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
   ASSERT_EQ(ex->step(nav_at(0, 0, 0.3f), scan, out), Status::kOk);
   EXPECT_FLOAT_EQ(out.heading_rad, 0.3f);

@@ -56,6 +56,8 @@ Status SrtStarTree::add_node(const Pose2& pose, const SectorScan& sectors, uint1
   node.parent = parent;
   for (uint16_t s = 0; s < sectors.count(); ++s) {
     node.radius_mm[s] = sectors.radius_mm(s);
+    for (uint16_t j = 0; j < SectorScan::kRaysPerSector; ++j)
+      node.clear_mm[s * SectorScan::kRaysPerSector + j] = sectors.clear_mm(s, j);
     node.reach_mm = std::max(node.reach_mm, sectors.radius_mm(s));
   }
   (void)nodes_.push_back(node);  // cannot fail: checked full() above

@@ -55,6 +55,7 @@ class SrtStarPlanner {
   Point2 waypoint() const { return waypoint_; }
   uint16_t current_node() const { return current_; }  // node the vehicle is leaving or at
   uint16_t target_node() const { return target_node_; }  // node of a backtrack, else kNoNode
+  bool aligning() const { return aligning_; }
   const SrtStarTree& tree() const { return tree_; }
   const SectorScan& last_sectors() const { return sectors_; }
   uint32_t waypoints_issued() const { return waypoints_issued_; }
@@ -65,7 +66,9 @@ class SrtStarPlanner {
  private:
   void restart(const Pose2& pose, const LaserScan& scan, TimeUs now, RestartReason why);
   Status grow(const Pose2& pose, const LaserScan& scan, TimeUs now);
-  void choose_next(TimeUs now);
+  void choose_next(const Pose2& pose, const LaserScan& scan, TimeUs now);
+  // Whether the straight path from pose to p keeps the clearance from every return of scan.
+  bool path_clear(const Pose2& pose, const LaserScan& scan, Point2 p) const;
   void set_waypoint(Point2 p, TimeUs now);
 
   SrtParams srt_{};
@@ -77,6 +80,7 @@ class SrtStarPlanner {
   Point2 waypoint_{};
   uint16_t current_ = kNoNode;
   uint16_t target_node_ = kNoNode;
+  bool aligning_ = false;  // backtracking: closing in on the node before leaving for its parent
   TimeUs waypoint_time_{};
   uint32_t waypoints_issued_ = 0;
   uint32_t restarts_ = 0;

@@ -31,7 +31,13 @@ struct SrtNode {
   uint16_t sector_count = 0;
   uint16_t parent = kNoNode;
   uint16_t reach_mm = 0;       // largest sector radius: cheap rejection in safe-region tests
-  std::array<uint16_t, kMaxSectors> radius_mm{};
+  std::array<uint16_t, kMaxSectors> radius_mm{};  // perceived: the safe region
+  // Clear distance of each sector's rays (SectorScan::kRaysPerSector each): where to fly.
+  std::array<uint16_t, kMaxSectors * SectorScan::kRaysPerSector> clear_mm{};
+  float ray_angle(uint16_t s, uint16_t j) const {
+    return sector_start_rad +
+           (static_cast<float>(s) + (static_cast<float>(j) + 0.5f) / SectorScan::kRaysPerSector) * sector_width_rad;
+  }
 
   // The sector holding world point p, or -1 when p is outside the scanned field of view.
   int sector_of(Point2 p) const;
@@ -72,7 +78,7 @@ class SrtStarTree {
 
   uint32_t frontiers_dropped() const { return frontiers_dropped_; }  // did not fit
   uint32_t frontiers_removed() const { return frontiers_removed_; }  // covered by a new region
-  float coverage_margin_m = 0.2f;
+  float coverage_margin_m = 0.05f;  // set from SrtParams by the planner
 
  private:
   StaticVector<SrtNode, kMaxNodes> nodes_;
