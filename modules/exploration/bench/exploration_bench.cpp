@@ -41,7 +41,9 @@ LaserScan room_scan(uint16_t beams, double fov_deg, double x, double y, double h
 void guidance_step(benchmark::State& state, uint16_t beams, double fov_deg) {
   auto explorer = std::make_unique<BlendExplorer>();
   LaserScan scan = room_scan(beams, fov_deg, 2.0, 1.5, 0.3, 6.0, 4.0);
-  if (explorer->configure(Params{}, BeamGeometry::of(scan)) != Status::kOk) {
+  Params params;
+  params.guidance.waypoint_time_limit_s = 1e6f;  // steady state: no restart inside the loop
+  if (explorer->configure(params, BeamGeometry::of(scan)) != Status::kOk) {
     state.SkipWithError("configure failed");
     return;
   }
