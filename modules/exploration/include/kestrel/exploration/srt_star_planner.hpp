@@ -6,14 +6,20 @@
 // the scan is divided into sectors and stored as a new node, child of the node it left
 // (updateSRT); if it came back by backtracking, the node it returned to becomes current. Then,
 // if the current node still owns a frontier, a new waypoint is drawn at random (seeded PRNG)
-// inside the sector of one of its frontiers (newWaypoint); otherwise the parent is the next
-// waypoint (previousWaypoint, backtracking). Exploration is finished when the root owns no
-// frontier: the waypoint stays on the root, so the vehicle returns to where it started.
+// in the sector of one of its frontiers (newWaypoint): a random ray of the sector (or, when
+// all of the sector's rays are blocked for the vehicle, of a sector up to ray_search_sectors
+// away) at a random fraction of the sector radius within the ray's clear distance, and only if
+// the straight path from the vehicle keeps the clearance from the scan just taken (SRT's
+// Valid()). Otherwise the parent is the next waypoint (previousWaypoint, backtracking); if the
+// vehicle, up to d beside the node, has no clear straight path to the parent, it first closes
+// in on the node (within d / 2). Exploration is finished when the root owns no frontier: the
+// waypoint stays on the root, so the vehicle returns to where it started.
 //
-// Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped
-// (so a frontier that cannot be seen past never traps the planner); when the waypoint is not
-// reached within the time limit, or the tree is full when a node must be added, the tree is
-// erased and exploration restarts from the current pose with a new root.
+// Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
+// and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
+// past never traps the planner); when the waypoint is not reached within the time limit, or
+// the tree is full when a node must be added, the tree is erased and exploration restarts from
+// the current pose with a new root.
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
