@@ -50,14 +50,14 @@ struct Building {
   static bool in_inner(double x, double y) { return x > 7.7 && x < 12.3 && y > 2.7 && y < 7.3; }
 };
 
-// Cells of 0.2 m seen by the laser (every second beam, up to its return).
+// Cells of 0.2 m seen by the laser (every stride-th beam, up to its return).
 class CoverageGrid {
  public:
   static constexpr double kCell = 0.2;
   CoverageGrid() : nx_(static_cast<int>(Building::kW / kCell)), ny_(static_cast<int>(Building::kH / kCell)),
                    seen_(static_cast<std::size_t>(nx_ * ny_), false) {}
-  void mark(const LaserScan& s, double x, double y, double heading) {
-    for (int i = 0; i < s.beam_count; i += 2) {
+  void mark(const LaserScan& s, double x, double y, double heading, int stride) {
+    for (int i = 0; i < s.beam_count; i += stride) {
       const uint16_t r = s.range_mm[i];
       const double range = r >= kMinValidRangeMm ? r * 1e-3 : (r == range_code::kNoReturn ? s.max_range_mm * 1e-3 : 0.0);
       const double a = heading + s.angle_of(static_cast<std::size_t>(i));
@@ -106,7 +106,7 @@ struct FlightLog {
   uint64_t allocations = 0;
 };
 
-FlightLog fly(Explorer& ex, double duration_s, uint32_t seed) {
+FlightLog fly(Explorer& ex, double duration_s, uint32_t seed, int stride) {
   const Building b;
   const LaserModel urg = LaserModel::urg04lx();
   Params p;
@@ -131,7 +131,7 @@ FlightLog fly(Explorer& ex, double duration_s, uint32_t seed) {
   for (int k = 0; k * dt < duration_s; ++k) {
     const double t = k * dt;
     scan = b.world.scan(urg, x, y, heading, TimeUs::from_s(t));
-    grid.mark(scan, x, y, heading);
+    grid.mark(scan, x, y, heading, stride);
     nav.stamp = scan.stamp;
     nav.position_m = {static_cast<float>(x), static_cast<float>(y), 1.0f};
     nav.heading_rad = static_cast<float>(heading);
@@ -179,20 +179,30 @@ FlightLog fly(Explorer& ex, double duration_s, uint32_t seed) {
   return log;
 }
 
-// Under qemu-arm (10-50x slower) one seed per explorer and a shorter flight keep the test
-// within a minute or two; the host runs three seeds for 15 minutes of flight each.
-#if KESTREL_TEST_ON_HOST
-constexpr double kFlight_s = 900;
-const std::vector<uint32_t> kSeeds = {1, 2, 3};
-#else
-constexpr double kFlight_s = 400;
-const std::vector<uint32_t> kSeeds = {1};
-#endif
+// Under qemu-arm (10-50x slower, and the Verdex emulates its floating point) one seed per
+// explorer and a shorter flight keep the test within a couple of minutes; the host runs three
+// seeds for 15 minutes of flight each. KESTREL_KINEMATIC_SHORT=1 runs the short version on the
+// host (KESTREL_KINEMATIC_SHORT=250 with the Verdex's flight time), to check that its
+// assertions hold.
+struct Scale {
+  double flight_s;
+  std::vector<uint32_t> seeds;
+  int coverage_beam_stride;
+};
+Scale scale() {
+  const char* forced = std::getenv("KESTREL_KINEMATIC_SHORT");  // "1", or the flight in seconds
+  const bool short_run = !KESTREL_TEST_ON_HOST || forced != nullptr;
+  if (!short_run) return {900, {1, 2, 3}, 2};
+  double flight_s = KESTREL_TEST_ON_VERDEX ? 250.0 : 400.0;
+  if (forced != nullptr && std::atof(forced) > 1.0) flight_s = std::atof(forced);
+  return {flight_s, {1}, 6};
+}
 
 TEST(KinematicClosedLoop, BlendPassesTheGapAndExploresTheInnerRoom) {
-  for (uint32_t seed : kSeeds) {
+  const Scale sc = scale();
+  for (uint32_t seed : sc.seeds) {
     auto ex = std::make_unique<BlendExplorer>();
-    const FlightLog log = fly(*ex, kFlight_s, seed);
+    const FlightLog log = fly(*ex, sc.flight_s, seed, sc.coverage_beam_stride);
     EXPECT_EQ(log.collisions, 0) << "seed " << seed;
     EXPECT_GE(log.t_east_s, 0) << "seed " << seed;   // through the 1.2 m gap
     EXPECT_GE(log.t_inner_s, 0) << "seed " << seed;  // inside the inner room
@@ -204,8 +214,9 @@ TEST(KinematicClosedLoop, BlendPassesTheGapAndExploresTheInnerRoom) {
 }
 
 TEST(KinematicClosedLoop, WallFollowingAloneLeavesRoomsUnexplored) {
+  const Scale sc = scale();
   auto ex = std::make_unique<WallFollowExplorer>();
-  const FlightLog log = fly(*ex, kFlight_s, 1);
+  const FlightLog log = fly(*ex, sc.flight_s, 1, sc.coverage_beam_stride);
   EXPECT_EQ(log.collisions, 0);
   // It circles the start room at about r_t from its walls: a gap narrower than 2 r_t is never
   // taken, and the inner room is never seen.
@@ -216,9 +227,10 @@ TEST(KinematicClosedLoop, WallFollowingAloneLeavesRoomsUnexplored) {
 }
 
 TEST(KinematicClosedLoop, SrtAloneExploresWithPositionSetpoints) {
-  for (uint32_t seed : kSeeds) {
+  const Scale sc = scale();
+  for (uint32_t seed : sc.seeds) {
     auto ex = std::make_unique<SrtExplorer>();
-    const FlightLog log = fly(*ex, kFlight_s, seed);
+    const FlightLog log = fly(*ex, sc.flight_s, seed, sc.coverage_beam_stride);
     EXPECT_EQ(log.collisions, 0) << "seed " << seed;
     EXPECT_GE(log.t_inner_s, 0) << "seed " << seed;
     EXPECT_GE(log.inner_coverage, 0.95) << "seed " << seed;
