@@ -38,7 +38,7 @@ TEST(RingBuffer, WrapsAroundManyTimes) {
 
 TEST(RingBuffer, OneProducerOneConsumerThreadsLoseNothing) {
   static RingBuffer<uint32_t, 64> q;
-  constexpr uint32_t kCount = 200000;
+  constexpr uint32_t kCount = 20000;
   std::thread producer([] {
     for (uint32_t i = 0; i < kCount;)
       if (q.push(i)) ++i;

@@ -11,11 +11,15 @@ if(NOT KESTREL_TARGET MATCHES "^(host|overo|verdex)$")
   message(FATAL_ERROR "KESTREL_TARGET must be host, overo or verdex, not '${KESTREL_TARGET}'")
 endif()
 
+# RTTI is off everywhere, not only in firmware: a test or tool that touches a polymorphic
+# firmware class (a HAL driver) needs its typeinfo, which -fno-rtti code never emits.
+add_compile_options($<$<COMPILE_LANGUAGE:CXX>:-fno-rtti>)
+
 set(KESTREL_COMMON_WARNINGS -Wall -Wextra -Werror -Werror=shadow -Werror=undef
     -Wno-psabi -Wno-missing-field-initializers)
 # -Wno-psabi: GCC's notes on an old ARM ABI change are not about our code.
 # -Wno-missing-field-initializers: aggregates rely on default member initialisers.
-set(KESTREL_FIRMWARE_FLAGS ${KESTREL_COMMON_WARNINGS} -fno-exceptions -fno-rtti
+set(KESTREL_FIRMWARE_FLAGS ${KESTREL_COMMON_WARNINGS} -fno-exceptions
     -fno-associative-math -fstack-usage)
 if(CMAKE_CROSSCOMPILING)
   list(APPEND KESTREL_FIRMWARE_FLAGS -Wframe-larger-than=16384)

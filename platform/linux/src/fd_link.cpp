@@ -51,10 +51,13 @@ Result<std::size_t> FdLink::read(uint8_t* out, std::size_t capacity) {
   for (;;) {
     const ssize_t n = ::read(fd_, out, capacity);
     if (n > 0) return static_cast<std::size_t>(n);
-    if (n == 0) return capacity == 0 ? Result<std::size_t>(std::size_t{0}) : Result<std::size_t>(Status::kClosed);
+    if (n == 0) {
+      if (capacity == 0 || !zero_read_is_eof_) return std::size_t{0};
+      return Status::kClosed;
+    }
     if (errno == EINTR) continue;
     if (errno == EAGAIN || errno == EWOULDBLOCK) return std::size_t{0};
-    if (errno == ECONNRESET) return Status::kClosed;
+    if (errno == ECONNRESET || errno == EIO) return Status::kClosed;  // EIO: the tty hung up
     return Status::kIoError;
   }
 }

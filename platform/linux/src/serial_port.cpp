@@ -45,6 +45,7 @@ Status SerialPort::open(const char* device, int baud) {
   }
   tcflush(fd, TCIOFLUSH);
   reset(fd);
+  zero_read_is_eof_ = false;
   return Status::kOk;
 }
 

@@ -27,6 +27,9 @@ class FdLink : public hal::Link {
 
  protected:
   void reset(int fd);
+  // A stream socket reads 0 bytes only at end of stream; a serial line in raw mode with
+  // VMIN = VTIME = 0 reads 0 whenever nothing is waiting, which is not a hang-up.
+  bool zero_read_is_eof_ = true;
 
  private:
   int fd_ = -1;

@@ -1,0 +1,41 @@
+#pragma once
+// A mission is what flies the simulated vehicle in kestrel-sim: `manual` replays a command
+// script; later missions (hover, waypoints, explore) run the autonomy stack. A mission sees
+// the simulation through its HAL drivers (sim.clock(), sim.laser(), sim.imu(),
+// sim.altimeter(), sim.flight_controller()) and may read ground truth only for metrics.
+//
+// To add a mission: implement this interface and add one row to the table in
+// mission_registry.cpp (name, one-line summary, factory).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "kestrel/core/status.hpp"
+#include "kestrel/core/time.hpp"
+
+namespace kestrel::sim {
+
+class Simulation;
+
+enum class MissionState : uint8_t { kRunning, kDone, kFailed };
+
+// Extra numbers a mission adds to metrics.json (name, value), e.g. {"hover_rms_m", 0.06}.
+using MissionMetrics = std::vector<std::pair<std::string, double>>;
+
+class Mission {
+ public:
+  virtual ~Mission() = default;
+  virtual const char* name() const = 0;
+  // Called once at t = 0, before the first tick; an error aborts the run.
+  virtual Status start(Simulation& sim) = 0;
+  // Called at the start time and then every tick_period() of simulated time, each time after
+  // the world has been stepped to now.
+  virtual MissionState tick(Simulation& sim) = 0;
+  virtual Duration tick_period() const { return Duration::from_ms(10); }
+  // Mission-specific metrics, appended to the run's metrics.
+  virtual void metrics(MissionMetrics& /*out*/) const {}
+  // A one-line reason after kFailed.
+  virtual std::string failure() const { return {}; }
+};
+
+}  // namespace kestrel::sim

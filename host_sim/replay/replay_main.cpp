@@ -1,0 +1,198 @@
+// kestrel-replay: runs the scan matcher (paper 000, section 5.1) over a recorded log, laser
+// only, and writes trajectory_est.tum (each pose stamped with its scan's ipc_timestamp),
+// metrics.json, map.pgm/map.yaml and render.png into --out.
+//   kestrel-replay --log FILE [--format carmen|mines] --out DIR
+// Exit status: 0 done, 1 bad usage or output error, 2 unreadable or malformed log.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "carmen_scans.hpp"
+#include "kestrel/output/canvas.hpp"
+#include "kestrel/output/json_writer.hpp"
+#include "kestrel/output/pgm_map.hpp"
+#include "kestrel/output/png_writer.hpp"
+#include "kestrel/output/tum_writer.hpp"
+#include "kestrel/scan_matching/scan_matcher.hpp"
+#include "trajectory_metrics.hpp"
+
+namespace {
+using namespace kestrel;
+using namespace kestrel::scan_matching;
+
+// The logs' robots move far between recorded scans (sub-sampled logs, seconds apart), so the
+// replay profile uses a coarser map and a wide window; one profile per log format, never per log.
+Params profile(const std::string& format) {
+  Params p;
+  if (format == "carmen") {
+    p.resolution_m = 0.02f;
+    p.sigma_m = 0.03f;
+    p.angle_step_rad = 0.25f * static_cast<float>(M_PI) / 180.0f;
+    p.max_range_m = 40.0f;
+    p.max_accel_mps2 = 1.0f;
+    p.max_ang_accel_radps2 = 1.0f;
+    p.min_window_m = 0.3f;
+    p.max_window_m = 1.6f;
+    p.min_window_rad = 0.25f;
+    p.max_window_rad = 0.75f;
+    p.join_max_m = 0.5f;
+  } else {
+    p.resolution_m = 0.01f;
+    p.sigma_m = 0.02f;
+    p.angle_step_rad = 0.2f * static_cast<float>(M_PI) / 180.0f;
+    p.max_range_m = 4.0f;
+    p.max_accel_mps2 = 2.0f;
+    p.min_window_m = 0.1f;
+    p.max_window_m = 0.5f;
+    p.min_window_rad = 0.1f;
+    p.max_window_rad = 0.4f;
+  }
+  p.min_score = 0.05f;
+  p.cov_half_window = 12;
+  return p;
+}
+
+constexpr int kReplayDim = 2000;  // 40 m at 2 cm: the host can afford a wider window
+LikelihoodMapStorage<kReplayDim, kMaxKeyframes * kMaxBeams> g_map_a, g_map_b;
+
+int usage() {
+  std::fprintf(stderr, "usage: kestrel-replay --log FILE [--format carmen|mines] --out DIR\n");
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string log, format = "carmen", out_dir;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) return usage();
+    if (a == "--log") log = argv[++i];
+    else if (a == "--format") format = argv[++i];
+    else if (a == "--out") out_dir = argv[++i];
+    else return usage();
+  }
+  if (log.empty() || out_dir.empty() || (format != "carmen" && format != "mines")) return usage();
+
+  std::vector<replay::LogScan> scans;
+  std::string error;
+  if (!replay::read_log(log, format, scans, error)) {
+    std::fprintf(stderr, "kestrel-replay: %s\n", error.c_str());
+    return 2;
+  }
+  if (scans.empty()) {
+    std::fprintf(stderr, "kestrel-replay: %s: no laser scans\n", log.c_str());
+    return 2;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+
+  const Params params = profile(format);
+  static ScanMatcher matcher(params, g_map_a, g_map_b, true);
+  Pose2 start;
+  if (scans[0].has_reference) start = scans[0].reference.cast<float>();
+  if (!ok(matcher.configure(params, start))) {
+    std::fprintf(stderr, "kestrel-replay: bad matcher configuration\n");
+    return 1;
+  }
+
+  output::TumWriter tum;
+  if (!ok(tum.open(out_dir + "/trajectory_est.tum"))) {
+    std::fprintf(stderr, "kestrel-replay: cannot write %s\n", out_dir.c_str());
+    return 1;
+  }
+  std::vector<Pose2d> est, ref;
+  std::vector<Point2d> points;
+  int rejected = 0, lost = 0, keys = 0, degenerate = 0;
+  double t_sum = 0, t_max = 0;
+  for (const replay::LogScan& s : scans) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const ScanMatch r = matcher.process(s.scan);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    t_sum += us;
+    t_max = std::max(t_max, us);
+    if (!r.ok()) {
+      ++rejected;
+      continue;
+    }
+    const uint32_t f = r.measurement.flags;
+    lost += (f & match_flag::kLost) != 0;
+    keys += (f & match_flag::kKeyScan) != 0;
+    degenerate += (f & match_flag::kDegenerate) != 0;
+    const Pose2d p = r.measurement.pose.cast<double>();
+    (void)tum.write(s.stamp_s, p.x, p.y, 0.0, p.theta);
+    est.push_back(p);
+    if (s.has_reference) ref.push_back(s.reference);
+    for (uint16_t b = 0; b < s.scan.beam_count; b += 1) {
+      const uint16_t mm = s.scan.range_mm[b];
+      if (!LaserScan::is_return(mm) || mm >= params.max_range_m * 1000) continue;
+      const double a = s.scan.angle_of(b), rr = mm * 1e-3;
+      points.push_back(p.transform({rr * std::cos(a), rr * std::sin(a)}));
+    }
+  }
+  (void)tum.close();
+
+  const bool has_ref = ref.size() == est.size() && !ref.empty();
+  const replay::TrajectoryMetrics m = has_ref ? replay::compute_metrics(est, ref) : replay::TrajectoryMetrics{};
+  const int n = static_cast<int>(scans.size());
+  output::JsonWriter j;
+  j.begin_object();
+  j.string("log", log).string("format", format);
+  j.integer("scans", n).integer("rejected", rejected).integer("lost", lost).integer("key_scans", keys);
+  j.integer("degenerate", degenerate);
+  if (has_ref) {
+    j.number("rpe_trans_m", m.rpe_trans_m).number("rpe_trans_std_m", m.rpe_trans_std_m);
+    j.number("rpe_rot_deg", m.rpe_rot_deg).number("rpe_rot_std_deg", m.rpe_rot_std_deg);
+    j.number("rpe_trans_max_m", m.rpe_trans_max_m).number("rpe_rot_max_deg", m.rpe_rot_max_deg);
+    j.integer("rpe_pairs", m.pairs).integer("jumps", m.jumps);
+    j.number("ate_rmse_m", m.ate_rmse_m);
+  }
+  j.number("tasks.scan_match.us_mean", t_sum / n).number("tasks.scan_match.us_max", t_max);
+  j.end_object();
+  if (!ok(j.write_file(out_dir + "/metrics.json"))) return 1;
+
+  // The map: every return drawn at its scan's estimated pose, 5 cm cells.
+  double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+  for (const Point2d& q : points) { x0 = std::min(x0, q.x); y0 = std::min(y0, q.y); x1 = std::max(x1, q.x); y1 = std::max(y1, q.y); }
+  for (const Pose2d& q : est) { x0 = std::min(x0, q.x); y0 = std::min(y0, q.y); x1 = std::max(x1, q.x); y1 = std::max(y1, q.y); }
+  output::GridImage g;
+  g.resolution_m = 0.05;
+  g.origin_x_m = x0 - 1;
+  g.origin_y_m = y0 - 1;
+  g.width = std::min(4000, static_cast<int>((x1 - x0 + 2) / g.resolution_m) + 1);
+  g.height = std::min(4000, static_cast<int>((y1 - y0 + 2) / g.resolution_m) + 1);
+  std::vector<int> hits(static_cast<std::size_t>(g.width) * g.height, 0);
+  for (const Point2d& q : points) {
+    const int cx = static_cast<int>((q.x - g.origin_x_m) / g.resolution_m), cy = static_cast<int>((q.y - g.origin_y_m) / g.resolution_m);
+    if (cx >= 0 && cy >= 0 && cx < g.width && cy < g.height) ++hits[static_cast<std::size_t>(cy) * g.width + cx];
+  }
+  g.cells.assign(hits.size(), output::kPgmUnknown);
+  for (std::size_t i = 0; i < hits.size(); ++i) if (hits[i] >= 2) g.cells[i] = output::kPgmOccupied;
+  if (!ok(output::write_map(out_dir + "/map", g))) return 1;
+
+  const double ppm = std::min(1600.0 / (x1 - x0 + 2), 1600.0 / (y1 - y0 + 2));
+  output::Canvas c(static_cast<int>((x1 - x0 + 2) * ppm) + 1, static_cast<int>((y1 - y0 + 2) * ppm) + 1);
+  c.set_world_view(g.origin_x_m, g.origin_y_m, ppm);
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x)
+      if (g.cells[static_cast<std::size_t>(y) * g.width + x] == output::kPgmOccupied)
+        c.set(c.wx(g.origin_x_m + x * g.resolution_m), c.wy(g.origin_y_m + y * g.resolution_m), output::colors::kBlack);
+  for (std::size_t i = 1; i < est.size(); ++i) {
+    if (has_ref) {
+      const Point2d a = m.alignment.transform({ref[i - 1].x, ref[i - 1].y}), b = m.alignment.transform({ref[i].x, ref[i].y});
+      c.world_line(a.x, a.y, b.x, b.y, output::colors::kGreen, 2);
+    }
+    c.world_line(est[i - 1].x, est[i - 1].y, est[i].x, est[i].y, output::colors::kRed, 1);
+  }
+  c.text(8, 8, "scan matcher (red) vs reference (green)", output::colors::kBlack, 2);
+  if (!ok(output::write_png(out_dir + "/render.png", c))) return 1;
+
+  std::printf("scans %d rejected %d lost %d key %d", n, rejected, lost, keys);
+  if (has_ref) std::printf(" rpe %.4f m %.3f deg (max %.3f m %.2f deg, jumps %d) ate %.3f m", m.rpe_trans_m, m.rpe_rot_deg, m.rpe_trans_max_m, m.rpe_rot_max_deg, m.jumps, m.ate_rmse_m);
+  std::printf(" time mean %.0f us max %.0f us\n", t_sum / n, t_max);
+  return 0;
+}

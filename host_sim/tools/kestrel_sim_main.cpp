@@ -1,0 +1,100 @@
+// kestrel-sim: runs one simulated flight and writes its outputs. Exit status 0 on success
+// (a collision is an outcome, not an error: it is in metrics.json), 2 for a usage or input
+// error (bad option, unknown world, bad world/config/script file), 1 when outputs cannot be
+// written.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "kestrel/output/png_writer.hpp"
+#include "kestrel/sim/builtin_worlds.hpp"
+#include "kestrel/sim/flight_recorder.hpp"
+#include "kestrel/sim/mission_runner.hpp"
+#include "kestrel/sim/simulation.hpp"
+#include "run_outputs.hpp"
+#include "sim_options.hpp"
+#include "world_render.hpp"
+
+using namespace kestrel;
+using namespace kestrel::sim;
+
+namespace {
+
+int usage_error(const std::string& msg) {
+  std::fprintf(stderr, "kestrel-sim: %s\n", msg.c_str());
+  return 2;
+}
+
+void progress_bar(double f) {
+  const int width = 40;
+  const int n = static_cast<int>(f * width + 0.5);
+  std::string bar(static_cast<std::size_t>(n), '#');
+  bar.resize(width, '.');
+  std::fprintf(stderr, "\r[%s] %3d%%", bar.c_str(), static_cast<int>(f * 100 + 0.5));
+  if (f >= 1.0) std::fprintf(stderr, "\n");
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const tools::ParseOutcome parsed = tools::parse_sim_options(argc, argv);
+  if (!parsed.ok) return usage_error(parsed.error + "\n" + tools::sim_usage());
+  const tools::SimOptions& opt = parsed.options;
+  if (opt.help) {
+    std::fputs(tools::sim_usage().c_str(), stdout);
+    return 0;
+  }
+  WorldParseResult world = load_world(opt.world);
+  if (!world.ok) return usage_error(world.error);
+
+  SimConfig cfg;
+  cfg.laser = opt.laser == "urg04lx" ? LaserParams::urg04lx() : LaserParams::utm30lx();
+  cfg.seed = opt.seed;
+  if (!opt.config_path.empty()) {
+    ConfigFile file;
+    if (std::string e = file.load(opt.config_path); !e.empty()) return usage_error(e);
+    if (std::string e = cfg.apply(file); !e.empty()) return usage_error(e);
+  } else if (std::string e = cfg.validate(); !e.empty()) {
+    return usage_error(e);
+  }
+  const MissionInfo* info = find_mission(opt.mission);
+  std::string mission_error;
+  std::unique_ptr<Mission> mission = info->create(opt.mission_options, mission_error);
+  if (!mission) return usage_error(mission_error);
+
+  if (::mkdir(opt.out_dir.c_str(), 0755) != 0 && errno != EEXIST) {
+    std::fprintf(stderr, "kestrel-sim: cannot create the output directory '%s'\n", opt.out_dir.c_str());
+    return 1;
+  }
+
+  Simulation sim(std::move(world.world), cfg);
+  FlightRecorder rec(sim.world(), sim.free_space());
+  sim.set_observer(&rec);
+  const bool tty = ::isatty(2) != 0;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const RunResult run = run_mission(sim, *mission, Duration::from_s(opt.duration_s),
+                                    tty ? std::function<void(double)>(progress_bar) : std::function<void(double)>());
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  if (run.status != Status::kOk) return usage_error(run.message);
+
+  const std::string dir = opt.out_dir + "/";
+  int rc = 0;
+  if (tools::write_metrics(dir + "metrics.json", opt, sim, rec, run, *mission) != Status::kOk) rc = 1;
+  if (tools::write_truth_tum(dir + "trajectory_truth.tum", rec) != Status::kOk) rc = 1;
+  char title[256], sub[256];
+  std::snprintf(title, sizeof(title), "KESTREL-SIM  %s  (%s)", sim.world().name.c_str(), opt.mission.c_str());
+  std::snprintf(sub, sizeof(sub), "LASER %s  SEED %llu  %.1f S  FLOWN %.1f M  COVERAGE %.0f%%  COLLISIONS %zu",
+                opt.laser.c_str(), static_cast<unsigned long long>(opt.seed), run.end.seconds(), rec.distance_m(),
+                rec.coverage() * 100, sim.contacts().size());
+  const output::Canvas canvas = tools::render_run(sim.world(), rec, sim.contacts(), {title, sub});
+  if (output::write_png(dir + "render.png", canvas) != Status::kOk) rc = 1;
+  if (rc != 0) std::fprintf(stderr, "kestrel-sim: could not write every output into '%s'\n", opt.out_dir.c_str());
+  std::fprintf(stderr, "kestrel-sim: %s after %.2f s simulated (%.1fx real time); outputs in %s\n",
+               run.message.c_str(), run.end.seconds(), wall_s > 0 ? run.end.seconds() / wall_s : 0.0,
+               opt.out_dir.c_str());
+  return rc;
+}

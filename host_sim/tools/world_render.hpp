@@ -1,0 +1,23 @@
+#pragma once
+// render.png of a simulated run: the world seen from above (walls black, glass cyan, railings
+// purple dashes, obstacles filled with a colour for their top height, hanging ones hatched),
+// the reachable free area (white) and the part the laser saw (pale blue), room names, the
+// true path with start and end markers, the last scan, any collision, a scale bar, axes and
+// a legend.
+#include <string>
+
+#include "kestrel/output/canvas.hpp"
+#include "kestrel/sim/flight_recorder.hpp"
+#include "kestrel/sim/world.hpp"
+
+namespace kestrel::sim::tools {
+
+struct RenderInfo {
+  std::string title;     // first line above the map
+  std::string subtitle;  // second line
+};
+
+output::Canvas render_run(const World& world, const FlightRecorder& rec, const std::vector<Contact>& contacts,
+                          const RenderInfo& info);
+
+}  // namespace kestrel::sim::tools

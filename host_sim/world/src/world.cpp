@@ -1,0 +1,78 @@
+#include "kestrel/sim/world.hpp"
+
+#include <algorithm>
+
+namespace kestrel::sim {
+
+const char* to_string(Material m) {
+  switch (m) {
+    case Material::kOpaque: return "opaque";
+    case Material::kGlass: return "glass";
+    case Material::kRailing: return "railing";
+  }
+  return "?";
+}
+
+std::vector<Segment> World::segments() const {
+  std::vector<Segment> out;
+  int piece = 0;
+  for (const Wall& w : walls) {
+    out.push_back({w.a, w.b, w.z_min, w.z_max, w.material, w.return_probability, piece, -1});
+    ++piece;
+  }
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    const Obstacle& o = obstacles[k];
+    const std::size_t n = o.polygon.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      out.push_back({o.polygon[i], o.polygon[(i + 1) % n], o.z_min, o.z_max, o.material,
+                     o.return_probability, piece, static_cast<int>(k)});
+    }
+    ++piece;
+  }
+  return out;
+}
+
+Bounds2 World::bounds() const {
+  Bounds2 b;
+  bool first = true;
+  auto grow = [&](const Eigen::Vector2d& p) {
+    if (first) {
+      b.min = b.max = p;
+      first = false;
+    } else {
+      b.min = b.min.cwiseMin(p);
+      b.max = b.max.cwiseMax(p);
+    }
+  };
+  grow(Eigen::Vector2d(start.x, start.y));
+  for (const Wall& w : walls) {
+    grow(w.a);
+    grow(w.b);
+  }
+  for (const Obstacle& o : obstacles)
+    for (const auto& p : o.polygon) grow(p);
+  return b;
+}
+
+bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  bool inside = false;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Eigen::Vector2d& a = poly[i];
+    const Eigen::Vector2d& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y())) {
+      const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+      if (p.x() < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+int World::room_at(double x, double y) const {
+  const Eigen::Vector2d p(x, y);
+  for (std::size_t i = 0; i < rooms.size(); ++i)
+    if (point_in_polygon(rooms[i].polygon, p)) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace kestrel::sim

@@ -1,0 +1,178 @@
+#pragma once
+// The data-fusion filter of paper 000 section 5.2, with the state history that absorbs late
+// measurements and the seconds-old SLAM corrections of section 5.3.
+//
+// Structure. Four decoupled filters instead of one 15-state EKF: three world axes, each
+// [position, velocity, accelerometer bias] (AxisFilter), and the heading [psi, gyro bias]
+// (HeadingFilter). The IMU is the input of the prediction: its specific force is rotated into
+// the world frame with the autopilot's roll and pitch (FlightStatus, small and known) and the
+// filter's own heading, gravity is removed, and each axis integrates its component; the
+// acceleration the filter reports is that input minus the estimated bias. The axes couple only
+// through the heading, which enters their input (its uncertainty is added to their input
+// noise) and rotates the horizontal bias pair when the vehicle yaws. Why: one prediction
+// costs about 200 float operations instead of about 7000 for F P F^T of a coupled 15-state
+// filter; on the Verdex (soft float, tens of cycles per operation) the coupled filter at
+// 100 Hz alone would take most of the 20 M-cycle budget of a 10 Hz scan cycle, and re-running
+// one second of history for a late SLAM correction would take several cycles' budgets.
+// Dropped: cross-covariances between axes (the scan matcher's x-y covariance term is used in
+// the gate only) and between heading and position.
+//
+// Timing. predict() runs once per IMU sample: it is the fixed clock. Each step stores the
+// input and the predicted (prior) state and covariance in a ring of kHistory slots
+// (1024: 5.1 s at 200 Hz, 10.2 s at 100 Hz; about 200 kB). Every measurement is logged
+// (kMeasurementLog entries, sorted by stamp) and applied at the time it was taken: the filter
+// restarts from the prior of the slot at or before its stamp, applies the logged
+// measurements of that slot in stamp order (each with H extrapolated over the few
+// milliseconds between the slot and its stamp), and re-propagates with the stored inputs,
+// re-applying every later logged measurement, to the newest sample. The result equals the
+// in-order result. A measurement older than the oldest slot is rejected with kOutOfRange; one
+// stamped more than max_future_s after the newest IMU sample with kTimeJump.
+//
+// SLAM corrections (apply_correction) are a pose of the vehicle at an earlier time in the
+// SLAM frame. The difference D between that pose and the filter's pose at that time is a
+// rigid SE(2) shift of the trajectory from then on: the state at that time is shifted, the
+// scan matcher poses logged after it are shifted, and later scan matcher poses are mapped
+// through frame_correction() (the accumulated D), so the present state moves by D while the
+// local, scan-matcher-driven estimate stays smooth. Covariances are left as they are.
+//
+// Start: IMU samples before the first pose are stored (kNoData); the first pose initialises
+// the state at its own stamp and propagates through the stored samples after it; the first
+// altimeter sample sets the height outright.
+//
+// Bad inputs: non-finite samples (kNotFinite), IMU time going backwards (kTimeJump, sample
+// dropped), an IMU gap above max_imu_gap_s (kTimeJump: coasts at constant velocity over the
+// gap and restarts the history), gated measurements (kRejected). Each is counted.
+//
+// API
+//   NavFilter(params)                  construct once (large: keep it static or at start-up)
+//   Status set_params(p)               validate and use; does not reset the state
+//   void   set_attitude(FlightStatus)  roll/pitch for the following IMU samples (default level)
+//   Status predict(ImuSample)          one fixed-clock step; kNoData before the first pose
+//   Status update_pose(PoseMeasurement2)     scan matcher pose (world frame, 3x3 covariance)
+//   Status update_altitude(AltimeterSample)
+//   Status apply_correction(PoseMeasurement2) SLAM pose of the vehicle at meas.stamp
+//   NavState state() const             the newest estimate; valid once initialised
+//   counters(), frame_correction(), axis(i), heading(), history_span()
+//   Conventions: FlightStatus roll/pitch as AttitudeSetpoint (pitch > 0 nose down, +x
+//   acceleration; roll > 0 accelerates along +y body).
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "kestrel/core/messages.hpp"
+#include "kestrel/core/se2.hpp"
+#include "kestrel/core/status.hpp"
+#include "kestrel/estimation/axis_filter.hpp"
+#include "kestrel/estimation/ekf_params.hpp"
+#include "kestrel/estimation/heading_filter.hpp"
+
+namespace kestrel::estimation {
+
+struct NavFilterCounters {
+  uint32_t imu_samples = 0;          // accepted predictions
+  uint32_t imu_not_finite = 0;
+  uint32_t imu_time_backwards = 0;   // stamp not after the previous sample
+  uint32_t imu_gaps = 0;             // gaps above max_imu_gap_s (history restarted)
+  uint32_t pose_updates = 0;
+  uint32_t pose_rejected = 0;        // gated out (outliers)
+  uint32_t altitude_updates = 0;
+  uint32_t altitude_rejected = 0;
+  uint32_t corrections = 0;
+  uint32_t corrections_rejected = 0;
+  uint32_t meas_not_finite = 0;
+  uint32_t meas_too_old = 0;         // older than the history
+  uint32_t meas_future = 0;          // beyond max_future_s ahead of the newest sample
+  uint32_t log_overflow = 0;         // log entries dropped while still inside the history
+  uint32_t replays = 0;              // measurements that needed re-propagation
+  uint32_t replayed_steps = 0;       // prediction steps re-run for them
+};
+
+class NavFilter {
+ public:
+  static constexpr std::size_t kHistory = 1024;
+  static constexpr std::size_t kMeasurementLog = 512;
+
+  explicit NavFilter(const EkfParams& params = {});
+
+  Status set_params(const EkfParams& params);
+  const EkfParams& params() const { return params_; }
+  // Forgets everything: the next pose initialises the filter again.
+  void reset();
+
+  void set_attitude(const FlightStatus& status);
+  Status predict(const ImuSample& imu);
+  Status update_pose(const PoseMeasurement2& meas);
+  Status update_altitude(const AltimeterSample& meas);
+  Status apply_correction(const PoseMeasurement2& slam_pose);
+
+  NavState state() const;
+  bool initialised() const { return initialised_; }
+  const NavFilterCounters& counters() const { return counters_; }
+  Pose2 frame_correction() const { return frame_correction_; }
+  const AxisState& axis(int i) const { return cur_.ax[static_cast<std::size_t>(i)]; }
+  const HeadingState& heading() const { return cur_.hd; }
+  Duration history_span() const;
+
+ private:
+  struct Filters {
+    std::array<AxisState, 3> ax;
+    HeadingState hd;
+    Eigen::Vector3f accel_world = Eigen::Vector3f::Zero();  // last input minus bias, m/s^2
+    float yaw_rate = 0;                                     // last gyro minus bias, rad/s
+    bool height_known = false;  // false until the first altimeter sample
+  };
+  struct Input {
+    Eigen::Vector3f accel = Eigen::Vector3f::Zero();  // body specific force of the sample
+    float gyro_z = 0;
+    float roll = 0;
+    float pitch = 0;
+  };
+  struct Slot {
+    TimeUs t;
+    Input in;       // the sample that ended the step into this slot
+    Filters prior;  // state after that step, before this slot's measurements
+  };
+  enum class Kind : uint8_t { kPose, kAltitude, kCorrection };
+  struct Entry {
+    TimeUs t;
+    Kind kind = Kind::kPose;
+    bool fresh = false;  // being applied for the first time: count and (correction) compute D
+    Eigen::Vector3f z = Eigen::Vector3f::Zero();  // pose x, y, psi | height | D dx, dy, dpsi
+    Eigen::Matrix3f R = Eigen::Matrix3f::Zero();
+  };
+
+  Slot& slot(std::size_t i) { return slots_[(first_ + i) % kHistory]; }
+  const Slot& slot(std::size_t i) const { return slots_[(first_ + i) % kHistory]; }
+  Entry& entry(std::size_t i) { return log_[(log_first_ + i) % kMeasurementLog]; }
+
+  void initialise(TimeUs t, const Pose2& pose);
+  void propagate(const Filters& from, Filters& to, const Input& in, float dt) const;
+  Status submit(Entry e);
+  Status apply(Filters& f, Entry& e, const Slot& s, std::size_t log_index);
+  Status apply_pose(Filters& f, const Entry& e, float delta, bool count);
+  Status apply_altitude(Filters& f, const Entry& e, float delta, bool count);
+  void shift(Filters& f, const Eigen::Vector3f& d) const;
+  static void unshift(Entry& e, const Eigen::Vector3f& d);
+  std::size_t slot_at(TimeUs t) const;
+  std::size_t log_insert(const Entry& e);
+  void log_trim();
+
+  EkfParams params_;
+  std::array<Slot, kHistory> slots_{};
+  std::size_t first_ = 0;
+  std::size_t count_ = 0;
+  std::array<Entry, kMeasurementLog> log_{};
+  std::size_t log_first_ = 0;
+  std::size_t log_count_ = 0;
+  Filters cur_;  // posterior at the newest slot
+  Input attitude_;
+  Pose2 frame_correction_;
+  bool initialised_ = false;
+  bool have_imu_ = false;
+  TimeUs last_imu_t_;
+  bool have_height_ = false;
+  float last_height_ = 0;
+  NavFilterCounters counters_;
+};
+
+}  // namespace kestrel::estimation

@@ -1,0 +1,76 @@
+#pragma once
+// Learning the filter's noise parameters from flights with ground truth (paper 000 section
+// 5.2, after Abbeel, Coates, Montemerlo, Ng and Thrun, "Discriminative training of Kalman
+// filters", RSS 2005): instead of the likelihood of the measurements, minimise the error that
+// matters to the controller, the velocity error against ground truth, over the variance
+// parameters. Steps:
+//   1. replay the recorded sensor streams through the filter in delivery order (measurements
+//      arrive `measurement_latency` after they were taken, as on the vehicle);
+//   2. at every ground-truth sample compare the filter's velocity with the true velocity;
+//      the objective is the mean squared norm of the difference;
+//   3. coordinate descent in log-variance space over the learnable parameters (noise
+//      densities and measurement-covariance scales; variances stay positive and the step is
+//      a factor), halving the step when a full sweep does not improve, within each
+//      parameter's valid range.
+// Deterministic (no sampling), so a tuning run is reproducible. This is the core of the host
+// tool; it allocates nothing and takes the filter as a workspace.
+//
+// API
+//   VelocityError evaluate_velocity_error(filter, params, runs)
+//   LearningResult learn_noise_parameters(filter, start, runs, options)
+#include <array>
+#include <span>
+
+#include "kestrel/core/messages.hpp"
+#include "kestrel/estimation/ekf_params.hpp"
+#include "kestrel/estimation/nav_filter.hpp"
+
+namespace kestrel::estimation {
+
+struct TruthSample {
+  TimeUs stamp;
+  Eigen::Vector3f position_m = Eigen::Vector3f::Zero();
+  Eigen::Vector3f velocity_mps = Eigen::Vector3f::Zero();
+};
+
+// One recorded flight. Every stream is sorted by stamp; attitude and altitude may be empty.
+struct RecordedRun {
+  std::span<const ImuSample> imu;
+  std::span<const FlightStatus> attitude;
+  std::span<const PoseMeasurement2> poses;
+  std::span<const AltimeterSample> altitude;
+  std::span<const TruthSample> truth;
+  Duration measurement_latency;  // poses and altitude are delivered this long after their stamp
+};
+
+struct VelocityError {
+  double rms_mps = 0;   // sqrt of the objective
+  double mean_mps = 0;  // mean norm of the velocity error
+  double std_mps = 0;   // standard deviation of that norm
+  double pos_mean_m = 0;
+  std::size_t samples = 0;
+};
+
+// Parameters the learning varies (the rest, gates and initial variances, stay as given).
+inline constexpr std::array<const char*, 8> kLearnableParams = {
+    "accel_noise_xy", "accel_noise_z", "accel_bias_walk", "gyro_noise",
+    "gyro_bias_walk", "pose_cov_scale", "heading_cov_scale", "altimeter_var_scale"};
+
+struct LearningOptions {
+  int max_evaluations = 300;
+  float initial_log_step = 1.5f;  // first step: a factor e^1.5 = 4.5
+  float min_log_step = 0.1f;      // stop when the step is below a factor 1.1
+};
+
+struct LearningResult {
+  EkfParams params;
+  VelocityError before;
+  VelocityError after;
+  int evaluations = 0;
+};
+
+VelocityError evaluate_velocity_error(NavFilter& filter, const EkfParams& params, std::span<const RecordedRun> runs);
+LearningResult learn_noise_parameters(NavFilter& filter, const EkfParams& start, std::span<const RecordedRun> runs,
+                                      const LearningOptions& options = {});
+
+}  // namespace kestrel::estimation

@@ -1,0 +1,119 @@
+#include "kestrel/estimation/noise_learning.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace kestrel::estimation {
+namespace {
+
+struct Accumulator {
+  double sum_sq = 0, sum = 0, sum_pos = 0;
+  std::size_t n = 0;
+};
+
+void replay(NavFilter& filter, const RecordedRun& run, Accumulator& acc) {
+  std::size_t i_imu = 0, i_att = 0, i_pose = 0, i_alt = 0;
+  const Duration lat = run.measurement_latency;
+  const TimeUs never{std::numeric_limits<int64_t>::max()};
+  for (const TruthSample& truth : run.truth) {
+    // Deliver everything due up to the truth sample, in delivery order (attitude, then IMU, then
+    // measurements on ties: the autopilot's attitude is current when its IMU sample arrives).
+    for (;;) {
+      const TimeUs t_att = i_att < run.attitude.size() ? run.attitude[i_att].stamp : never;
+      const TimeUs t_imu = i_imu < run.imu.size() ? run.imu[i_imu].stamp : never;
+      const TimeUs t_pose = i_pose < run.poses.size() ? run.poses[i_pose].stamp + lat : never;
+      const TimeUs t_alt = i_alt < run.altitude.size() ? run.altitude[i_alt].stamp + lat : never;
+      TimeUs next = t_att;
+      int which = 0;
+      if (t_imu < next) { next = t_imu; which = 1; }
+      if (t_pose < next) { next = t_pose; which = 2; }
+      if (t_alt < next) { next = t_alt; which = 3; }
+      if (next > truth.stamp) break;
+      switch (which) {
+        case 0: filter.set_attitude(run.attitude[i_att++]); break;
+        case 1: (void)filter.predict(run.imu[i_imu++]); break;
+        case 2: (void)filter.update_pose(run.poses[i_pose++]); break;
+        default: (void)filter.update_altitude(run.altitude[i_alt++]); break;
+      }
+    }
+    const NavState s = filter.state();
+    if (!s.valid) continue;
+    const float e = (s.velocity_mps - truth.velocity_mps).norm();
+    if (!std::isfinite(e)) {
+      acc.sum_sq = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    acc.sum_sq += static_cast<double>(e) * e;
+    acc.sum += e;
+    acc.sum_pos += (s.position_m - truth.position_m).norm();
+    ++acc.n;
+  }
+}
+
+}  // namespace
+
+VelocityError evaluate_velocity_error(NavFilter& filter, const EkfParams& params, std::span<const RecordedRun> runs) {
+  Accumulator acc;
+  for (const RecordedRun& run : runs) {
+    filter.reset();
+    if (!ok(filter.set_params(params))) return VelocityError{std::numeric_limits<double>::infinity(), 0, 0, 0, 0};
+    replay(filter, run, acc);
+  }
+  VelocityError out;
+  out.samples = acc.n;
+  if (acc.n == 0) {
+    out.rms_mps = std::numeric_limits<double>::infinity();
+    return out;
+  }
+  const double n = static_cast<double>(acc.n);
+  out.rms_mps = std::sqrt(acc.sum_sq / n);
+  out.mean_mps = acc.sum / n;
+  out.std_mps = std::sqrt(std::max(0.0, acc.sum_sq / n - out.mean_mps * out.mean_mps));
+  out.pos_mean_m = acc.sum_pos / n;
+  return out;
+}
+
+LearningResult learn_noise_parameters(NavFilter& filter, const EkfParams& start, std::span<const RecordedRun> runs,
+                                      const LearningOptions& options) {
+  LearningResult r;
+  r.params = start;
+  r.before = evaluate_velocity_error(filter, start, runs);
+  r.evaluations = 1;
+  double best = r.before.rms_mps;
+  VelocityError best_err = r.before;
+  float step = options.initial_log_step;
+  auto fields = ekf_param_fields(r.params);
+  while (step >= options.min_log_step && r.evaluations < options.max_evaluations) {
+    bool improved = false;
+    for (const char* key : kLearnableParams) {
+      const params::ParamField* field = nullptr;
+      for (const params::ParamField& f : fields) {
+        if (std::strcmp(f.key, key) == 0) field = &f;
+      }
+      if (field == nullptr) continue;
+      for (const float dir : {1.0f, -1.0f}) {
+        if (r.evaluations >= options.max_evaluations) break;
+        const float old = *field->value;
+        const float candidate = std::clamp(old * std::exp(dir * step), field->min, field->max);
+        if (candidate == old) continue;
+        *field->value = candidate;
+        const VelocityError e = evaluate_velocity_error(filter, r.params, runs);
+        ++r.evaluations;
+        if (e.rms_mps < best) {
+          best = e.rms_mps;
+          best_err = e;
+          improved = true;
+          break;  // keep it; next parameter
+        }
+        *field->value = old;
+      }
+    }
+    if (!improved) step *= 0.5f;
+  }
+  r.after = best_err;
+  return r;
+}
+
+}  // namespace kestrel::estimation

@@ -1,0 +1,99 @@
+#pragma once
+// Mission state machine, after paper 003 section 3.4: the mission is a fixed sequence of
+// phases, and each phase ends on feedback (the estimate reaching a set-point, a timer, the
+// explorer reporting that no frontier is left):
+//
+//   idle -> takeoff -> {hover | waypoints | explore -> return} -> land -> landed
+//
+// with a failsafe from any airborne phase: when the state estimate is invalid or stale for
+// longer than `estimate_timeout_s`, the vehicle stops and descends in place (failsafe_land).
+// The controller turns each phase into a GuidanceSetpoint; in the explore phase it passes the
+// explorer's set-point through, pinned to the flight altitude, and records a breadcrumb trail
+// that the return phase flies back along.
+#include <cstdint>
+
+#include "kestrel/core/messages.hpp"
+#include "kestrel/core/static_vector.hpp"
+#include "kestrel/core/status.hpp"
+#include "kestrel/mission/breadcrumb_trail.hpp"
+
+namespace kestrel::mission {
+
+enum class MissionKind : uint8_t { kHover, kWaypoints, kExplore };
+enum class Phase : uint8_t { kIdle, kTakeoff, kHover, kWaypoints, kExplore, kReturn, kLand, kLanded, kFailsafeLand };
+const char* to_string(Phase p);
+const char* to_string(MissionKind k);
+
+struct Waypoint {
+  Eigen::Vector3f position_m = Eigen::Vector3f::Zero();
+  float heading_rad = 0;
+  float hold_s = 0;  // time to hover at the waypoint once reached
+};
+
+struct MissionParams {
+  float takeoff_altitude_m = 1.0f;     // flight altitude above the floor
+  float climb_rate_mps = 0.5f;         // set-point ramp during take-off
+  float descent_rate_mps = 0.3f;       // set-point ramp during landing
+  float landed_altitude_m = 0.12f;     // below this, and slow, the vehicle has landed
+  float hover_duration_s = 60.0f;      // hover mission: time at the set-point
+  float arrive_radius_m = 0.15f;       // a set-point is reached within this distance...
+  float arrive_speed_mps = 0.2f;       // ...and below this speed
+  float estimate_timeout_s = 0.5f;     // stale or invalid estimate for longer => failsafe
+  float explore_time_limit_s = 600.0f; // explore phase ends after this, frontiers or not
+  float return_speed_mps = 0.6f;       // cruise speed along the breadcrumb trail
+  float breadcrumb_spacing_m = 0.4f;
+};
+
+// What the explorer says at this guidance step.
+struct ExplorerOutput {
+  GuidanceSetpoint setpoint;
+  bool finished = false;  // no frontier is left
+};
+
+class MissionController {
+ public:
+  static constexpr std::size_t kMaxWaypoints = 64;
+
+  // Checks parameters and waypoints (finite, positive altitudes, within capacity).
+  Status configure(MissionKind kind, const MissionParams& params, const IVector<Waypoint>* waypoints = nullptr);
+
+  // One guidance step: the set-point to fly now. `explorer` is read only in the explore phase.
+  GuidanceSetpoint step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer);
+
+  Phase phase() const { return phase_; }
+  bool finished() const { return phase_ == Phase::kLanded; }
+  // True while the motors should run (take-off until touchdown).
+  bool wants_armed() const { return phase_ != Phase::kIdle && phase_ != Phase::kLanded; }
+  TimeUs phase_started() const { return phase_start_; }
+  const Eigen::Vector3f& home() const { return home_; }
+  std::size_t waypoint_index() const { return waypoint_index_; }
+  const BreadcrumbTrail& trail() const { return trail_; }
+  // Time the hover phase began: the hover metric is measured from here.
+  bool hovering() const { return phase_ == Phase::kHover; }
+
+ private:
+  void enter(Phase p, TimeUs now);
+  bool arrived(const NavState& nav, const Eigen::Vector3f& target) const;
+  GuidanceSetpoint hold(TimeUs now, const Eigen::Vector3f& p, float heading) const;
+
+  MissionKind kind_ = MissionKind::kHover;
+  MissionParams params_;
+  StaticVector<Waypoint, kMaxWaypoints> waypoints_;
+  BreadcrumbTrail trail_;
+  Phase phase_ = Phase::kIdle;
+  TimeUs phase_start_;
+  TimeUs last_valid_estimate_;
+  TimeUs last_step_;
+  bool seen_estimate_ = false;
+  Eigen::Vector3f home_ = Eigen::Vector3f::Zero();
+  Eigen::Vector3f hold_point_ = Eigen::Vector3f::Zero();
+  float hold_heading_ = 0;
+  float ramp_z_ = 0;
+  std::size_t waypoint_index_ = 0;
+  TimeUs arrived_at_;
+  bool at_waypoint_ = false;
+  std::size_t return_index_ = 0;
+  bool configured_ = false;
+};
+
+}  // namespace kestrel::mission

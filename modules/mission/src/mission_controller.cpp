@@ -1,0 +1,226 @@
+#include "kestrel/mission/mission_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kestrel::mission {
+
+const char* to_string(Phase p) {
+  switch (p) {
+    case Phase::kIdle: return "idle";
+    case Phase::kTakeoff: return "takeoff";
+    case Phase::kHover: return "hover";
+    case Phase::kWaypoints: return "waypoints";
+    case Phase::kExplore: return "explore";
+    case Phase::kReturn: return "return";
+    case Phase::kLand: return "land";
+    case Phase::kLanded: return "landed";
+    case Phase::kFailsafeLand: return "failsafe_land";
+  }
+  return "?";
+}
+
+const char* to_string(MissionKind k) {
+  switch (k) {
+    case MissionKind::kHover: return "hover";
+    case MissionKind::kWaypoints: return "waypoints";
+    case MissionKind::kExplore: return "explore";
+  }
+  return "?";
+}
+
+namespace {
+bool positive_finite(float v) { return std::isfinite(v) && v > 0; }
+}  // namespace
+
+Status MissionController::configure(MissionKind kind, const MissionParams& p, const IVector<Waypoint>* waypoints) {
+  if (!positive_finite(p.takeoff_altitude_m) || !positive_finite(p.climb_rate_mps) ||
+      !positive_finite(p.descent_rate_mps) || !positive_finite(p.arrive_radius_m) ||
+      !positive_finite(p.arrive_speed_mps) || !positive_finite(p.estimate_timeout_s) ||
+      !positive_finite(p.return_speed_mps) || !positive_finite(p.breadcrumb_spacing_m) ||
+      !(std::isfinite(p.hover_duration_s) && p.hover_duration_s >= 0) ||
+      !(std::isfinite(p.explore_time_limit_s) && p.explore_time_limit_s >= 0) ||
+      !(std::isfinite(p.landed_altitude_m) && p.landed_altitude_m >= 0 && p.landed_altitude_m < p.takeoff_altitude_m))
+    return Status::kInvalidArgument;
+  waypoints_.clear();
+  if (kind == MissionKind::kWaypoints) {
+    if (waypoints == nullptr || waypoints->empty()) return Status::kInvalidArgument;
+    if (waypoints->size() > kMaxWaypoints) return Status::kCapacityExceeded;
+    for (const Waypoint& w : *waypoints) {
+      if (!w.position_m.allFinite() || !std::isfinite(w.heading_rad) || !(w.hold_s >= 0) || !(w.position_m.z() > 0))
+        return Status::kInvalidArgument;
+      (void)waypoints_.push_back(w);
+    }
+  }
+  kind_ = kind;
+  params_ = p;
+  trail_ = BreadcrumbTrail(p.breadcrumb_spacing_m);
+  phase_ = Phase::kIdle;
+  seen_estimate_ = false;
+  configured_ = true;
+  return Status::kOk;
+}
+
+void MissionController::enter(Phase p, TimeUs now) {
+  phase_ = p;
+  phase_start_ = now;
+}
+
+bool MissionController::arrived(const NavState& nav, const Eigen::Vector3f& target) const {
+  return (nav.position_m - target).norm() < params_.arrive_radius_m &&
+         nav.velocity_mps.norm() < params_.arrive_speed_mps;
+}
+
+GuidanceSetpoint MissionController::hold(TimeUs now, const Eigen::Vector3f& p, float heading) const {
+  GuidanceSetpoint s;
+  s.stamp = now;
+  s.mode = GuidanceSetpoint::Mode::kPosition;
+  s.position_m = p;
+  s.heading_rad = heading;
+  return s;
+}
+
+GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer) {
+  const bool estimate_ok = nav.valid && nav.position_m.allFinite() && nav.velocity_mps.allFinite() &&
+                           std::isfinite(nav.heading_rad);
+  // The ramps integrate time between steps; a long gap (a stalled loop) must not make the
+  // set-point leap, so each step advances them by at most 0.1 s.
+  const float dt = seen_estimate_ ? std::clamp(static_cast<float>((now - last_step_).seconds()), 0.0f, 0.1f) : 0.0f;
+  last_step_ = now;
+  if (estimate_ok) {
+    last_valid_estimate_ = now;
+    seen_estimate_ = true;
+  }
+  if (!configured_ || !seen_estimate_) return hold(now, Eigen::Vector3f::Zero(), 0);
+
+  const bool airborne = phase_ != Phase::kIdle && phase_ != Phase::kLanded && phase_ != Phase::kFailsafeLand;
+  if (airborne && (now - last_valid_estimate_).seconds() > params_.estimate_timeout_s) {
+    // Descend from the last height we believed in; a set-point ramp that starts elsewhere would
+    // make the vehicle climb or drop.
+    if (phase_ != Phase::kTakeoff && phase_ != Phase::kLand) ramp_z_ = params_.takeoff_altitude_m;
+    enter(Phase::kFailsafeLand, now);
+  }
+  const float alt = params_.takeoff_altitude_m;
+
+  switch (phase_) {
+    case Phase::kIdle:
+      home_ = nav.position_m;
+      hold_point_ = {home_.x(), home_.y(), alt};
+      hold_heading_ = nav.heading_rad;
+      ramp_z_ = nav.position_m.z();
+      enter(Phase::kTakeoff, now);
+      [[fallthrough]];
+    case Phase::kTakeoff: {
+      ramp_z_ = std::min(alt, ramp_z_ + params_.climb_rate_mps * dt);
+      if (ramp_z_ >= alt && arrived(nav, hold_point_)) {
+        if (kind_ == MissionKind::kHover) {
+          enter(Phase::kHover, now);
+        } else if (kind_ == MissionKind::kWaypoints) {
+          waypoint_index_ = 0;
+          at_waypoint_ = false;
+          enter(Phase::kWaypoints, now);
+        } else {
+          trail_.clear();
+          trail_.record(nav.position_m);
+          enter(Phase::kExplore, now);
+        }
+      }
+      return hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
+    }
+    case Phase::kHover:
+      if ((now - phase_start_).seconds() >= params_.hover_duration_s) {
+        ramp_z_ = hold_point_.z();
+        enter(Phase::kLand, now);
+      }
+      return hold(now, hold_point_, hold_heading_);
+    case Phase::kWaypoints: {
+      const Waypoint& w = waypoints_[waypoint_index_];
+      if (arrived(nav, w.position_m)) {
+        if (!at_waypoint_) {
+          at_waypoint_ = true;
+          arrived_at_ = now;
+        }
+        if ((now - arrived_at_).seconds() >= w.hold_s) {
+          at_waypoint_ = false;
+          if (++waypoint_index_ == waypoints_.size()) {
+            hold_point_ = w.position_m;
+            hold_heading_ = w.heading_rad;
+            ramp_z_ = w.position_m.z();
+            enter(Phase::kLand, now);
+            return hold(now, hold_point_, hold_heading_);
+          }
+        }
+      }
+      const Waypoint& target = waypoints_[waypoint_index_];
+      return hold(now, target.position_m, target.heading_rad);
+    }
+    case Phase::kExplore: {
+      if (estimate_ok) trail_.record(nav.position_m);
+      const bool timed_out = (now - phase_start_).seconds() >= params_.explore_time_limit_s;
+      if (explorer == nullptr || explorer->finished || timed_out) {
+        return_index_ = trail_.size() == 0 ? 0 : trail_.size() - 1;
+        hold_heading_ = nav.heading_rad;
+        enter(Phase::kReturn, now);
+        return hold(now, nav.position_m, hold_heading_);
+      }
+      GuidanceSetpoint s = explorer->setpoint;
+      s.stamp = now;
+      s.position_m.z() = alt;  // the explorer plans in the plane
+      s.velocity_mps.z() = 0;
+      return s;
+    }
+    case Phase::kReturn: {
+      // Fly the trail backwards, chasing a carrot at most one second of travel ahead.
+      Eigen::Vector3f target = trail_.size() > 0 ? trail_.point(return_index_) : home_;
+      target.z() = alt;
+      const float pass_radius = std::max(0.3f, params_.arrive_radius_m);
+      while (return_index_ > 0 && (nav.position_m - target).head<2>().norm() < pass_radius) {
+        --return_index_;
+        target = trail_.point(return_index_);
+        target.z() = alt;
+      }
+      if (return_index_ == 0 && arrived(nav, {home_.x(), home_.y(), alt})) {
+        hold_point_ = {home_.x(), home_.y(), alt};
+        ramp_z_ = alt;
+        enter(Phase::kLand, now);
+        return hold(now, hold_point_, hold_heading_);
+      }
+      const Eigen::Vector3f to_target = target - nav.position_m;
+      const float dist = to_target.norm();
+      GuidanceSetpoint s = hold(now, target, hold_heading_);
+      if (dist > params_.return_speed_mps) {
+        const Eigen::Vector3f dir = to_target / dist;
+        s.position_m = nav.position_m + dir * params_.return_speed_mps;
+        s.position_m.z() = alt;
+        s.velocity_mps = dir * params_.return_speed_mps;
+        s.velocity_mps.z() = 0;
+      }
+      return s;
+    }
+    case Phase::kLand:
+      ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);  // aim below the floor to settle
+      if (nav.position_m.z() < params_.landed_altitude_m && std::fabs(nav.velocity_mps.z()) < 0.2f)
+        enter(Phase::kLanded, now);
+      return hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
+    case Phase::kFailsafeLand: {
+      // No trustworthy position: stop moving and descend; time bounds the descent because the
+      // altitude estimate may be what failed.
+      GuidanceSetpoint s;
+      s.stamp = now;
+      s.mode = GuidanceSetpoint::Mode::kVelocity;
+      ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);
+      s.position_m = {nav.position_m.x(), nav.position_m.y(), ramp_z_};
+      s.heading_rad = hold_heading_;
+      const float fall_time = params_.takeoff_altitude_m / params_.descent_rate_mps + 3.0f;
+      if ((estimate_ok && nav.position_m.z() < params_.landed_altitude_m) ||
+          (now - phase_start_).seconds() > fall_time)
+        enter(Phase::kLanded, now);
+      return s;
+    }
+    case Phase::kLanded:
+      return hold(now, {hold_point_.x(), hold_point_.y(), 0}, hold_heading_);
+  }
+  return hold(now, hold_point_, hold_heading_);
+}
+
+}  // namespace kestrel::mission

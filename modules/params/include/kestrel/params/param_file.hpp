@@ -1,0 +1,54 @@
+#pragma once
+// Parameter files: plain text, one `key = value` per line, `#` starts a comment (units go in
+// the comments the writer emits). A module describes its parameters once as a table of
+// ParamField (key, where the value lives, allowed range, unit); the same table parses, checks
+// and writes a file, so the file format and the Params struct cannot drift apart.
+//
+// API
+//   Status parse_params(text, fields, error)     text -> values, all-or-nothing
+//   Status load_params_file(path, fields, error) reads a file (<= kMaxParamFileBytes) and parses it
+//   Result<size_t> write_params(fields, header, buf, cap)  values -> text
+//   Status save_params_file(path, fields, header, error)
+//
+// Parsing rules (every violation is an error naming the line and the key):
+//   unknown key, duplicate key, missing '=', empty or non-numeric value, trailing garbage,
+//   non-finite value, value outside [min, max]. Keys absent from the file keep their current
+//   (default) values. On any error no value is changed: fields are written only after the
+//   whole text has been checked.
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+#include "kestrel/core/status.hpp"
+
+namespace kestrel::params {
+
+inline constexpr std::size_t kMaxParamFileBytes = 8192;
+inline constexpr std::size_t kMaxParamFields = 64;
+
+struct ParamField {
+  const char* key;    // [a-z0-9_]+
+  float* value;       // where the value is read from and stored to
+  float min;          // inclusive bounds of a valid value
+  float max;
+  const char* unit;   // written as a comment, e.g. "(m/s^2)^2/Hz"
+  const char* help;   // one line, written as a comment
+};
+
+struct ParamError {
+  int line = 0;         // 1-based line of the error, 0 when not tied to a line
+  char message[160] = {};
+};
+
+Status parse_params(std::string_view text, std::span<const ParamField> fields, ParamError& error);
+Status load_params_file(const char* path, std::span<const ParamField> fields, ParamError& error);
+
+// Writes every field as `# help [unit]` then `key = value` (9 significant digits, so a float
+// survives the round trip). Returns the number of characters written (no terminating zero
+// counted), or kCapacityExceeded.
+Result<std::size_t> write_params(std::span<const ParamField> fields, const char* header, char* buf,
+                                 std::size_t cap);
+Status save_params_file(const char* path, std::span<const ParamField> fields, const char* header,
+                        ParamError& error);
+
+}  // namespace kestrel::params

@@ -1,0 +1,135 @@
+// Benchmarks of the scan matcher at the paper's configuration (paper 000, section 5.1).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+
+#include "kestrel/scan_matching/scan_matcher.hpp"
+
+namespace {
+using namespace kestrel;
+using namespace kestrel::scan_matching;
+
+// A realistic indoor scan: a 6 x 4 m room with a doorway, a pillar and a railing, seen by a
+// UTM-30LX (1081 beams over 270 degrees) from `pose`.
+LaserScan room_scan(const Pose2& pose, TimeUs t) {
+  LaserScan s;
+  s.stamp = t;
+  s.beam_count = 1081;
+  s.first_angle_rad = -2.35619449f;
+  s.angle_step_rad = 4.71238898f / 1080.0f;
+  s.max_range_mm = 30000;
+  struct Seg { float ax, ay, bx, by; };
+  const Seg segs[] = {{-3, -2, 3, -2}, {3, -2, 3, 2}, {3, 2, 0.5f, 2}, {-0.5f, 2, -3, 2}, {-3, 2, -3, -2},
+                      {0.5f, 2, 0.5f, 3}, {-0.5f, 2, -0.5f, 3}, {1.2f, 0.3f, 1.5f, 0.3f}, {1.5f, 0.3f, 1.5f, 0.6f},
+                      {1.2f, 0.6f, 1.5f, 0.6f}, {1.2f, 0.3f, 1.2f, 0.6f}, {-2, -1, -2, 1}};
+  for (int i = 0; i < 1081; ++i) {
+    const float a = pose.theta + s.angle_of(static_cast<std::size_t>(i));
+    const float dx = std::cos(a), dy = std::sin(a);
+    float best = 1e9f;
+    for (std::size_t j = 0; j < sizeof(segs) / sizeof(segs[0]); ++j) {
+      const Seg& g = segs[j];
+      const float ex = g.bx - g.ax, ey = g.by - g.ay;
+      const float den = dx * ey - dy * ex;
+      if (std::fabs(den) < 1e-9f) continue;
+      const float wx = g.ax - pose.x, wy = g.ay - pose.y;
+      const float t1 = (wx * ey - wy * ex) / den, u = (wx * dy - wy * dx) / den;
+      // The railing (x = -2) is transparent every third beam.
+      if (j == 11 && i % 3 == 0) continue;
+      if (t1 > 0.02f && u >= 0 && u <= 1 && t1 < best) best = t1;
+    }
+    s.range_mm[static_cast<std::size_t>(i)] = best < 29.0f ? static_cast<uint16_t>(std::lround(best * 1000)) : 0;
+  }
+  return s;
+}
+
+struct PaperSetup {
+  Params p;
+  std::unique_ptr<OnboardMapStorage> storage = std::make_unique<OnboardMapStorage>();
+  std::unique_ptr<ScanMatcher> matcher;
+  LaserScan next;
+  PaperSetup(bool multi) {
+    p.multi_resolution = multi;
+    // About 15,000 candidate poses: 21 x 21 translations (+-7.5 cm) x 35 rotations (+-2.55 deg).
+    p.min_window_m = p.max_window_m = 10 * 0.0075f;
+    p.min_window_rad = p.max_window_rad = 17 * p.angle_step_rad;
+    matcher = std::make_unique<ScanMatcher>(p, storage->map_a, storage->map_b, true);
+    (void)matcher->process(room_scan({0.1f, 0.05f, 0.1f}, TimeUs::from_s(0)));
+    next = room_scan({0.13f, 0.03f, 0.105f}, TimeUs::from_s(0.025));
+  }
+};
+
+void paper_config(benchmark::State& st, bool multi) {
+  PaperSetup s(multi);
+  std::unique_ptr<ScanMatcher>& m = s.matcher;
+  for (auto _ : st) {
+    // The same scan each time against the same map: the overlap rule keeps the map.
+    ScanMatch r = m->process(s.next);
+    benchmark::DoNotOptimize(r);
+  }
+  const double poses = 21.0 * 21.0 * 35.0;
+  st.counters["candidate_poses"] = poses;
+  st.counters["poses_per_s"] = benchmark::Counter(poses * static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_PaperMulti(benchmark::State& st) { paper_config(st, true); }
+void BM_PaperExhaustive(benchmark::State& st) { paper_config(st, false); }
+BENCHMARK(BM_PaperMulti)->Name("scan_matcher/paper_000")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PaperExhaustive)->Name("scan_matcher/paper_000_exhaustive")->Unit(benchmark::kMicrosecond);
+
+void BM_Contours350(benchmark::State& st) {
+  Params p;
+  LaserScan scan = room_scan({0.1f, 0.05f, 0.1f}, TimeUs{});
+  ScanPoints pts;
+  pts.angle_step_rad = scan.angle_step_rad * 3;
+  for (std::size_t i = 0; i < 1050; i += 3) {
+    const float a = scan.angle_of(i), r = scan.range_mm[i] * 1e-3f;
+    if (scan.range_mm[i] < 20) continue;
+    pts.x[pts.count] = r * std::cos(a);
+    pts.y[pts.count] = r * std::sin(a);
+    pts.range_mm[pts.count] = scan.range_mm[i];
+    pts.beam[pts.count] = static_cast<uint16_t>(i / 3);
+    ++pts.count;
+  }
+  auto ex = std::make_unique<ContourExtractor>(p);
+  auto c = std::make_unique<Contours>();
+  for (auto _ : st) {
+    ex->extract(pts, *c);
+    benchmark::DoNotOptimize(c->segment_count);
+  }
+  st.counters["points"] = pts.count;
+}
+BENCHMARK(BM_Contours350)->Name("scan_matcher/contours_350")->Unit(benchmark::kMicrosecond);
+
+void BM_MapBuild(benchmark::State& st) {
+  // A full rebuild of a 7.5 mm local map from 5 key scans of the room.
+  Params p;
+  auto storage = std::make_unique<OnboardMapStorage>();
+  auto local = std::make_unique<LocalMap>(p, storage->map_a, storage->map_b);
+  auto key = std::make_unique<KeyScan>();
+  for (int i = 0; i < 5; ++i) {
+    const LaserScan s = room_scan({0.05f * i, 0.0f, 0.02f * i}, TimeUs{});
+    key->pose = {0.05f * i, 0.0f, 0.02f * i};
+    key->points.count = 0;
+    key->points.angle_step_rad = s.angle_step_rad;
+    for (std::size_t b = 0; b < 1081; ++b) {
+      if (s.range_mm[b] < 20) continue;
+      const float a = s.angle_of(b), r = s.range_mm[b] * 1e-3f;
+      auto& pt = key->points;
+      pt.x[pt.count] = r * std::cos(a);
+      pt.y[pt.count] = r * std::sin(a);
+      pt.range_mm[pt.count] = s.range_mm[b];
+      pt.beam[pt.count] = static_cast<uint16_t>(b);
+      ++pt.count;
+    }
+    (void)local->submit(*key);
+    (void)local->rebuild();
+  }
+  for (auto _ : st) {
+    (void)local->submit(*key);  // the newest scan again: a full redraw of all five
+    benchmark::DoNotOptimize(local->rebuild());
+  }
+}
+BENCHMARK(BM_MapBuild)->Name("scan_matcher/map_build")->Unit(benchmark::kMicrosecond);
+
+}  // namespace

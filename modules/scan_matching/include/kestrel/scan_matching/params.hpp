@@ -1,0 +1,47 @@
+#pragma once
+// Parameters of the scan matcher (paper 000, section 5.1). Defaults are the paper's vehicle
+// configuration: a UTM-30LX at 40 Hz, 7.5 mm map cells and 0.15 degree rotation steps.
+#include <cstdint>
+
+namespace kestrel::scan_matching {
+
+// Cells of the likelihood map hold a scaled log-likelihood in [0, kCellMax]. The cap keeps a
+// whole scan's sum (kMaxBeams * kCellMax = 64,860) inside the uint16 accumulators of the
+// exhaustive search.
+inline constexpr uint8_t kCellMax = 60;
+
+struct Params {
+  // --- likelihood map (5.1.1)
+  float resolution_m = 0.0075f;     // map cell and translation search step
+  float sigma_m = 0.015f;           // laser noise: P(d) ~ exp(-d / sigma)
+  float kernel_sigmas = 3.0f;       // log-likelihood is clipped to 0 beyond this many sigma
+  // --- contours (5.1.1)
+  float join_base_m = 0.05f;        // always join endpoints closer than this
+  float join_gap_factor = 3.0f;     // ...or closer than this many beam spacings at their range
+  float join_max_m = 0.6f;          // never join farther than this (railing posts stay joined)
+  uint8_t join_beam_window = 4;     // join candidates up to this many points apart in scan order
+  // --- points
+  float min_range_m = 0.1f;
+  float max_range_m = 29.0f;        // returns at or beyond this are treated as no return
+  uint16_t min_points = 20;         // fewer valid points: the scan is rejected
+  // --- local map (5.1.1)
+  uint8_t keyframes = 5;            // k: scans drawn in the local map (<= kMaxKeyframes)
+  float min_overlap = 0.85f;        // a scan joins the map when fewer of its points fit it
+  // --- search (5.1.2)
+  float angle_step_rad = 0.0026180f;  // 0.15 degree
+  float max_accel_mps2 = 4.0f;        // window half-width 0.5 a dt^2, clamped below
+  float max_ang_accel_radps2 = 20.0f;
+  float min_window_m = 0.05f;
+  float max_window_m = 0.30f;
+  float min_window_rad = 0.02f;
+  float max_window_rad = 0.35f;
+  bool multi_resolution = true;     // branch and bound; false: exhaustive image addition
+  float min_score = 0.15f;          // mean cell value / kCellMax below this: match is lost
+  // --- covariance (5.1.3)
+  uint8_t cov_half_window = 12;     // translation slice half-width, cells
+  uint8_t cov_theta_steps = 8;      // rotation curve half-width, steps
+  float degenerate_ratio = 25.0f;   // eigenvalue ratio that flags a degenerate geometry
+  bool subcell_refine = true;       // parabolic peak interpolation on the slice and curve
+};
+
+}  // namespace kestrel::scan_matching

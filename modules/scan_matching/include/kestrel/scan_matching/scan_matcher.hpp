@@ -1,0 +1,88 @@
+#pragma once
+// The high-speed correlative scan matcher of paper 000, section 5.1: each scan is aligned by
+// exhaustive (or provably equivalent branch-and-bound) search against a likelihood map drawn
+// from the contours of the last k key scans (5.1.1, 5.1.2), in a window centred on a
+// constant-velocity prediction and sized from the vehicle's maximum acceleration and the time
+// since the last scan; the pose comes with a covariance read off the pose likelihood (5.1.3).
+// A scan joins the local map only when too few of its points fit it, so a hovering vehicle
+// keeps its map and does not drift.
+//
+// Steps per scan: validate -> points -> predict and size the window -> search -> covariance
+// and sub-cell refinement -> overlap test (maybe submit a key scan) -> output.
+#include <cstdint>
+
+#include "kestrel/core/messages.hpp"
+#include "kestrel/scan_matching/correlative_search.hpp"
+#include "kestrel/scan_matching/covariance_estimator.hpp"
+#include "kestrel/scan_matching/local_map.hpp"
+
+namespace kestrel::scan_matching {
+
+// Bits of PoseMeasurement2::flags set by the scan matcher.
+namespace match_flag {
+inline constexpr uint32_t kRejected = 1u << 0;       // no pose: see the reason bits below
+inline constexpr uint32_t kTooFewPoints = 1u << 1;   // all no-return, all max range, one beam...
+inline constexpr uint32_t kTimeBackwards = 1u << 2;  // stamp older than the previous scan's
+inline constexpr uint32_t kBadGeometry = 1u << 3;    // non-finite or zero angles, bad beam count
+inline constexpr uint32_t kNoMap = 1u << 4;          // no local map published yet (async mode)
+inline constexpr uint32_t kLost = 1u << 5;           // best score too low: pose is the prediction
+inline constexpr uint32_t kDegenerate = 1u << 6;     // long thin translation ellipse (corridor)
+inline constexpr uint32_t kKeyScan = 1u << 7;        // the scan was submitted to the local map
+inline constexpr uint32_t kFirstScan = 1u << 8;      // started the map; pose is the initial pose
+inline constexpr uint32_t kWindowClamped = 1u << 9;  // the window hit its static capacity
+}  // namespace match_flag
+
+struct ScanMatch {
+  PoseMeasurement2 measurement;  // stamp of the scan, pose, 3x3 covariance, flags
+  float score = 0;               // mean cell value under the points / kCellMax, 0..1
+  float overlap = 0;             // fraction of points on the map's likely cells
+  GridPose grid;                 // the raw grid optimum
+  float major_axis_rad = 0;      // translation ellipse orientation
+  float axis_ratio = 1;
+  uint16_t points = 0;
+  bool ok() const { return (measurement.flags & match_flag::kRejected) == 0; }
+};
+
+class ScanMatcher {
+ public:
+  // Maps are allocated by the caller, once. synchronous: the local map is rebuilt inline
+  // (replay, tests); otherwise the caller runs local_map().rebuild() in a background task.
+  ScanMatcher(const Params& p, LikelihoodMap& a, LikelihoodMap& b, bool synchronous = true);
+
+  Status configure(const Params& p, const Pose2& initial = {});
+  ScanMatch process(const LaserScan& scan);
+
+  LocalMap& local_map() { return local_; }
+  const Params& params() const { return params_; }
+  CorrelativeSearch& search() { return search_; }
+
+ private:
+  bool to_points(const LaserScan& scan);
+
+  Params params_;
+  bool synchronous_;
+  LocalMap local_;
+  CorrelativeSearch search_;
+  CovarianceEstimator cov_;
+  KeyScan key_;  // the scan being matched (points in sensor frame) and its pose
+  std::array<int32_t, 2 * 64 + 1> curve_{};
+  Pose2 initial_;
+  Pose2 last_pose_, prev_pose_;
+  TimeUs last_stamp_, prev_stamp_;
+  int accepted_ = 0;
+  bool started_ = false;
+};
+
+// The vehicle configuration: both map buffers in one object the caller allocates statically.
+// 576 x 576 cells of 7.5 mm cover 4.3 m around the vehicle; with the max-pooled pyramid and
+// the segment lists, both buffers take about 0.95 MiB, inside the 1 MiB map budget of the
+// Overo (DESIGN.md).
+template <int Dim, std::size_t MaxSegments>
+struct ScanMatcherStorage {
+  LikelihoodMapStorage<Dim, MaxSegments> map_a, map_b;
+};
+inline constexpr int kOnboardMapDim = 576;
+inline constexpr std::size_t kOnboardMaxSegments = 4 * kMaxBeams;
+using OnboardMapStorage = ScanMatcherStorage<kOnboardMapDim, kOnboardMaxSegments>;
+
+}  // namespace kestrel::scan_matching

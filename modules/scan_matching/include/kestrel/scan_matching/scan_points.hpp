@@ -1,0 +1,22 @@
+#pragma once
+// The returns of one laser scan as points in the sensor frame: the common input of contour
+// extraction (paper 000, 5.1.1) and of the search (5.1.2). Fixed capacity, no heap.
+#include <array>
+#include <cstdint>
+
+#include "kestrel/core/messages.hpp"
+
+namespace kestrel::scan_matching {
+
+inline constexpr std::size_t kMaxPoints = kMaxBeams;
+
+struct ScanPoints {
+  std::array<float, kMaxPoints> x{};       // m, sensor frame
+  std::array<float, kMaxPoints> y{};       // m, sensor frame
+  std::array<uint16_t, kMaxPoints> range_mm{};
+  std::array<uint16_t, kMaxPoints> beam{};  // beam index the point came from (gaps matter)
+  float angle_step_rad = 0;                // |angle between consecutive beams|
+  uint16_t count = 0;
+};
+
+}  // namespace kestrel::scan_matching

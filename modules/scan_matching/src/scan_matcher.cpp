@@ -1,0 +1,202 @@
+#include "kestrel/scan_matching/scan_matcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kestrel::scan_matching {
+namespace {
+
+float ceil_div(float a, float b) { return std::ceil(a / b - 1e-4f); }
+
+}  // namespace
+
+ScanMatcher::ScanMatcher(const Params& p, LikelihoodMap& a, LikelihoodMap& b, bool synchronous)
+    : params_(p), synchronous_(synchronous), local_(p, a, b) {
+  (void)configure(p);
+}
+
+Status ScanMatcher::configure(const Params& p, const Pose2& initial) {
+  if (!(p.angle_step_rad > 0) || !(p.max_range_m > p.min_range_m) || !initial.finite()) {
+    return Status::kInvalidArgument;
+  }
+  const Status s = local_.configure(p);
+  if (!ok(s)) return s;
+  params_ = p;
+  initial_ = initial;
+  started_ = false;
+  accepted_ = 0;
+  return Status::kOk;
+}
+
+bool ScanMatcher::to_points(const LaserScan& scan) {
+  ScanPoints& pts = key_.points;
+  pts.count = 0;
+  pts.angle_step_rad = std::fabs(scan.angle_step_rad);
+  const float lo = params_.min_range_m * 1000.0f;
+  float hi = params_.max_range_m * 1000.0f;
+  if (scan.max_range_mm > 0) hi = std::min(hi, static_cast<float>(scan.max_range_mm));
+  for (uint16_t i = 0; i < scan.beam_count; ++i) {
+    const uint16_t r = scan.range_mm[i];
+    if (!LaserScan::is_return(r)) continue;
+    const float rf = static_cast<float>(r);
+    if (rf < lo || rf >= hi) continue;  // at the maximum range: no return, not a surface
+    const float a = scan.angle_of(i);
+    pts.x[pts.count] = rf * 1e-3f * std::cos(a);
+    pts.y[pts.count] = rf * 1e-3f * std::sin(a);
+    pts.range_mm[pts.count] = r;
+    pts.beam[pts.count] = i;
+    ++pts.count;
+  }
+  return pts.count >= std::max<uint16_t>(params_.min_points, 2);
+}
+
+ScanMatch ScanMatcher::process(const LaserScan& scan) {
+  using namespace match_flag;
+  ScanMatch out;
+  PoseMeasurement2& m = out.measurement;
+  m.stamp = scan.stamp;
+  m.pose = last_pose_;
+  m.covariance = Eigen::Matrix3f::Identity() * 1e6f;
+  if (scan.beam_count == 0 || scan.beam_count > kMaxBeams || !std::isfinite(scan.first_angle_rad) ||
+      !std::isfinite(scan.angle_step_rad) || scan.angle_step_rad == 0.0f ||
+      std::fabs(scan.angle_step_rad) * static_cast<float>(scan.beam_count) > 6.3f) {
+    m.flags = kRejected | kBadGeometry;
+    return out;
+  }
+  if (started_ && scan.stamp < last_stamp_) {
+    m.flags = kRejected | kTimeBackwards;
+    return out;
+  }
+  if (!to_points(scan)) {
+    m.flags = kRejected | kTooFewPoints;
+    out.points = key_.points.count;
+    return out;
+  }
+  out.points = key_.points.count;
+
+  if (!started_) {
+    // The first scan defines the map frame at the initial pose.
+    key_.pose = initial_;
+    (void)local_.submit(key_);
+    if (synchronous_) (void)local_.rebuild();
+    started_ = true;
+    last_pose_ = prev_pose_ = initial_;
+    last_stamp_ = prev_stamp_ = scan.stamp;
+    accepted_ = 1;
+    m.pose = initial_;
+    m.covariance = Eigen::Matrix3f::Identity() * 1e-6f;
+    m.flags = kFirstScan | kKeyScan;
+    out.score = 1;
+    out.overlap = 1;
+    return out;
+  }
+
+  const LikelihoodMap* map = local_.acquire();
+  if (map == nullptr) {
+    local_.release();
+    m.flags = kRejected | kNoMap;
+    return out;
+  }
+
+  // Constant-velocity prediction; the window covers what max acceleration can add since.
+  const float dt = static_cast<float>((scan.stamp - last_stamp_).seconds());
+  const float dt_prev = static_cast<float>((last_stamp_ - prev_stamp_).seconds());
+  Pose2 pred = last_pose_;
+  if (accepted_ >= 2 && dt_prev > 1e-4f) {
+    const float f = std::min(dt / dt_prev, 4.0f);
+    pred.x += (last_pose_.x - prev_pose_.x) * f;
+    pred.y += (last_pose_.y - prev_pose_.y) * f;
+    pred.theta = wrap_angle(pred.theta + wrap_angle(last_pose_.theta - prev_pose_.theta) * f);
+  }
+  const float res = map->resolution_m();
+  // The search grid is the map's grid (and whole angle steps): a vehicle that holds still gets
+  // the same answer scan after scan instead of one that wanders inside a cell.
+  pred.x = map->origin_x_m() + std::round((pred.x - map->origin_x_m()) / res) * res;
+  pred.y = map->origin_y_m() + std::round((pred.y - map->origin_y_m()) / res) * res;
+  pred.theta = wrap_angle(std::round(pred.theta / params_.angle_step_rad) * params_.angle_step_rad);
+  const float win_m = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
+  const float win_rad = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
+  int half_cells = static_cast<int>(ceil_div(win_m, res));
+  int half_steps = static_cast<int>(ceil_div(win_rad, params_.angle_step_rad));
+  const int cap_cells = params_.multi_resolution ? kMaxWindowCells : kMaxExhaustiveWindow;
+  if (half_cells > cap_cells || half_steps > kMaxThetaSteps) m.flags |= kWindowClamped;
+  half_cells = std::clamp(half_cells, 1, cap_cells);
+  half_steps = std::clamp(half_steps, 0, kMaxThetaSteps);
+
+  (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad);
+  const GridPose best = params_.multi_resolution ? search_.branch_and_bound() : search_.exhaustive();
+  out.grid = best;
+  const float denom = static_cast<float>(key_.points.count) * kCellMax;
+  out.score = static_cast<float>(std::max(0, best.score)) / denom;
+
+  if (out.score < params_.min_score) {
+    local_.release();
+    m.pose = pred;
+    m.flags |= kLost;
+    prev_pose_ = last_pose_;
+    prev_stamp_ = last_stamp_;
+    last_pose_ = pred;
+    last_stamp_ = scan.stamp;
+    accepted_ = 1;  // no velocity until two matched scans again
+    return out;
+  }
+
+  // Covariance (5.1.3): the best score per rotation near the optimum, and the translation
+  // slice at the best rotation.
+  const int r = std::min<int>(params_.cov_theta_steps, 64);
+  const int k0 = std::max(-half_steps, best.k - r), k1 = std::min(half_steps, best.k + r);
+  const int count = k1 - k0 + 1;
+  for (int k = k0; k <= k1; ++k) {
+    curve_[static_cast<std::size_t>(k - k0)] = k == best.k ? best.score : search_.best_at(k, best.tx, best.ty).score;
+  }
+  const int ch = std::min<int>(params_.cov_half_window, kMaxExhaustiveWindow);
+  const uint16_t* slice = search_.slice(best.k, best.tx, best.ty, ch);
+  const CovarianceEstimate ce = cov_.estimate(slice, ch, curve_.data(), count, best.k - k0, params_.degenerate_ratio);
+
+  // Overlap: how many points land where the map expects a surface.
+  int fit = 0, inside = 0;
+  const float th = pred.theta + static_cast<float>(best.k) * params_.angle_step_rad;
+  const float c = std::cos(th), s = std::sin(th);
+  const float bx = pred.x + static_cast<float>(best.tx) * res, by = pred.y + static_cast<float>(best.ty) * res;
+  for (uint16_t i = 0; i < key_.points.count; ++i) {
+    const float wx = bx + c * key_.points.x[i] - s * key_.points.y[i];
+    const float wy = by + s * key_.points.x[i] + c * key_.points.y[i];
+    const int cx = static_cast<int>(std::floor((wx - map->origin_x_m()) / res));
+    const int cy = static_cast<int>(std::floor((wy - map->origin_y_m()) / res));
+    if (cx < 0 || cy < 0 || cx >= map->dim() || cy >= map->dim()) continue;  // the map cannot judge
+    ++inside;
+    fit += map->at(cx, cy) >= kCellMax / 2;
+  }
+  // The window follows the vehicle: far from the newest key scan, a new one re-centres it.
+  const float span = static_cast<float>(map->dim()) * res;
+  const float off_x = bx - (map->origin_x_m() + 0.5f * span), off_y = by - (map->origin_y_m() + 0.5f * span);
+  const bool off_centre = std::fabs(off_x) > 0.25f * span || std::fabs(off_y) > 0.25f * span;
+  local_.release();
+  out.overlap = inside > 0 ? static_cast<float>(fit) / static_cast<float>(inside) : 0.0f;
+
+  const Pose2 pose = params_.subcell_refine
+                         ? search_.pose_of(static_cast<float>(best.k) + ce.dk, static_cast<float>(best.tx) + ce.dx,
+                                           static_cast<float>(best.ty) + ce.dy)
+                         : search_.pose_of(static_cast<float>(best.k), static_cast<float>(best.tx), static_cast<float>(best.ty));
+  m.pose = pose;
+  m.covariance.setZero();
+  m.covariance.topLeftCorner<2, 2>() = ce.translation_cells * (res * res);
+  m.covariance(2, 2) = ce.rotation_steps2 * params_.angle_step_rad * params_.angle_step_rad;
+  if (ce.degenerate) m.flags |= kDegenerate;
+  out.major_axis_rad = ce.major_axis_rad;
+  out.axis_ratio = ce.axis_ratio;
+
+  if (out.overlap < params_.min_overlap || off_centre) {
+    key_.pose = pose;
+    if (local_.submit(key_)) m.flags |= kKeyScan;
+    if (synchronous_) (void)local_.rebuild();
+  }
+  prev_pose_ = last_pose_;
+  prev_stamp_ = last_stamp_;
+  last_pose_ = pose;
+  last_stamp_ = scan.stamp;
+  ++accepted_;
+  return out;
+}
+
+}  // namespace kestrel::scan_matching

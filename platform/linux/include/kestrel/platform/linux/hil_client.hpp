@@ -1,0 +1,69 @@
+#pragma once
+// The vehicle's sensors and autopilot reached through the HIL link (modules/comms framing) over
+// any byte Link: TCP to the simulator's bridge for hardware-in-the-loop runs, or a serial port
+// to an autopilot-side bridge that speaks the same framing. One object implements all four
+// HAL devices, because one stream carries them all; pump() moves bytes into small fixed
+// queues, and each device's poll reads its own queue.
+#include <cstdint>
+
+#include "kestrel/comms/hil_codec.hpp"
+#include "kestrel/core/ring_buffer.hpp"
+#include "kestrel/hal/altimeter.hpp"
+#include "kestrel/hal/flight_controller.hpp"
+#include "kestrel/hal/imu.hpp"
+#include "kestrel/hal/laser_scanner.hpp"
+#include "kestrel/hal/link.hpp"
+
+namespace kestrel::platform {
+
+struct HilCounters {
+  uint32_t frames = 0;
+  uint32_t malformed = 0;          // frames whose payload did not decode
+  uint32_t unknown_type = 0;
+  uint32_t crc_errors = 0;
+  uint32_t dropped_imu = 0;        // IMU queue full: the loop fell behind
+  uint32_t overwritten_scans = 0;  // a scan replaced one that was never read
+  uint32_t write_failures = 0;
+};
+
+class HilClient final : public hal::LaserScanner, public hal::Imu, public hal::Altimeter, public hal::FlightController {
+ public:
+  HilClient(hal::Link& link, const hal::LaserGeometry& geometry, Duration imu_period)
+      : link_(link), geometry_(geometry), imu_period_(imu_period) {}
+
+  // Reads what the link has and decodes it. kClosed when the peer has gone away.
+  Status pump();
+
+  // hal::LaserScanner
+  hal::LaserGeometry geometry() const override { return geometry_; }
+  Status poll(LaserScan& out) override;
+  // hal::Imu
+  Duration sample_period() const override { return imu_period_; }
+  Status poll(ImuSample& out) override;
+  // hal::Altimeter
+  Status poll(AltimeterSample& out) override;
+  // hal::FlightController
+  Status arm(bool armed) override;
+  Status send(const AttitudeSetpoint& setpoint) override;
+  Status poll_status(FlightStatus& out) override;
+
+  const HilCounters& counters() const { return counters_; }
+
+ private:
+  Status write_frame(uint8_t type, const uint8_t* payload, std::size_t size);
+  void dispatch();
+
+  hal::Link& link_;
+  hal::LaserGeometry geometry_;
+  Duration imu_period_;
+  comms::HilDecoder decoder_;
+  RingBuffer<ImuSample, 64> imu_queue_;
+  RingBuffer<AltimeterSample, 8> altitude_queue_;
+  LaserScan scan_;  // the newest complete scan
+  bool scan_fresh_ = false;
+  FlightStatus status_;
+  bool status_fresh_ = false;
+  HilCounters counters_;
+};
+
+}  // namespace kestrel::platform

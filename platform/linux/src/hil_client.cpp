@@ -1,0 +1,115 @@
+#include "kestrel/platform/linux/hil_client.hpp"
+
+#include "kestrel/comms/hil_messages.hpp"
+
+namespace kestrel::platform {
+
+using comms::HilType;
+
+Status HilClient::pump() {
+  uint8_t buf[512];
+  for (;;) {
+    const Result<std::size_t> r = link_.read(buf, sizeof(buf));
+    if (!r.ok()) return r.status();
+    if (r.value() == 0) break;
+    for (std::size_t i = 0; i < r.value(); ++i)
+      if (decoder_.push(buf[i])) dispatch();
+  }
+  counters_.crc_errors = decoder_.crc_errors() + decoder_.length_errors();
+  return Status::kOk;
+}
+
+void HilClient::dispatch() {
+  ++counters_.frames;
+  const uint8_t* p = decoder_.payload();
+  const std::size_t n = decoder_.size();
+  switch (static_cast<HilType>(decoder_.type())) {
+    case HilType::kLaserScan:
+      if (scan_fresh_) ++counters_.overwritten_scans;
+      if (comms::decode_payload(p, n, scan_) == Status::kOk) {
+        scan_fresh_ = true;
+      } else {
+        scan_fresh_ = false;
+        ++counters_.malformed;
+      }
+      return;
+    case HilType::kImu: {
+      ImuSample s;
+      if (comms::decode_payload(p, n, s) != Status::kOk) {
+        ++counters_.malformed;
+      } else if (!imu_queue_.push(s)) {
+        ++counters_.dropped_imu;
+      }
+      return;
+    }
+    case HilType::kAltitude: {
+      AltimeterSample s;
+      if (comms::decode_payload(p, n, s) != Status::kOk) {
+        ++counters_.malformed;
+      } else {
+        (void)altitude_queue_.push(s);  // a lost altitude sample is harmless: the next follows
+      }
+      return;
+    }
+    case HilType::kFlightStatus:
+      if (comms::decode_payload(p, n, status_) == Status::kOk) {
+        status_fresh_ = true;
+      } else {
+        ++counters_.malformed;
+      }
+      return;
+    default:
+      ++counters_.unknown_type;
+      return;
+  }
+}
+
+Status HilClient::poll(LaserScan& out) {
+  if (!scan_fresh_) return Status::kNoData;
+  out = scan_;
+  scan_fresh_ = false;
+  return Status::kOk;
+}
+
+Status HilClient::poll(ImuSample& out) { return imu_queue_.pop(out) ? Status::kOk : Status::kNoData; }
+
+Status HilClient::poll(AltimeterSample& out) { return altitude_queue_.pop(out) ? Status::kOk : Status::kNoData; }
+
+Status HilClient::poll_status(FlightStatus& out) {
+  if (!status_fresh_) return Status::kNoData;
+  out = status_;
+  status_fresh_ = false;
+  return Status::kOk;
+}
+
+Status HilClient::write_frame(uint8_t type, const uint8_t* payload, std::size_t size) {
+  uint8_t frame[64];
+  const std::size_t n = comms::hil_encode(type, payload, size, frame, sizeof(frame));
+  if (n == 0) return Status::kInvalidArgument;
+  // Commands are small; a link that cannot take one whole now is as good as down for this
+  // cycle, and the next cycle sends a fresher set-point.
+  const Result<std::size_t> w = link_.write(frame, n);
+  if (!w.ok()) {
+    ++counters_.write_failures;
+    return w.status();
+  }
+  if (w.value() != n) {
+    ++counters_.write_failures;
+    return Status::kIoError;
+  }
+  return Status::kOk;
+}
+
+Status HilClient::arm(bool armed) {
+  uint8_t p[4];
+  return write_frame(static_cast<uint8_t>(HilType::kArm), p, comms::encode_arm(armed, p, sizeof(p)));
+}
+
+Status HilClient::send(const AttitudeSetpoint& sp) {
+  uint8_t p[32];
+  const std::size_t n = comms::encode_payload(sp, p, sizeof(p));
+  if (n == 0) return Status::kInvalidArgument;
+  return write_frame(static_cast<uint8_t>(HilType::kAttitudeSetpoint), p, n);
+}
+
+}  // namespace kestrel::platform

@@ -1,0 +1,159 @@
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstring>
+
+#include "kestrel/comms/crc16.hpp"
+#include "kestrel/comms/hil_codec.hpp"
+#include "kestrel/comms/hil_messages.hpp"
+#include "kestrel/core/alloc_guard.hpp"
+
+namespace kestrel::comms {
+namespace {
+
+TEST(Crc16, MatchesTheStandardCheckValue) {
+  const char* check = "123456789";
+  EXPECT_EQ(crc16_ccitt(reinterpret_cast<const uint8_t*>(check), 9), 0x29B1);
+}
+
+LaserScan make_scan() {
+  LaserScan s;
+  s.stamp = TimeUs::from_us(123456789);
+  s.scan_period = Duration::from_ms(25);
+  s.beam_interval = Duration::from_us(17);
+  s.first_angle_rad = -2.356f;
+  s.angle_step_rad = 0.00436f;
+  s.max_range_mm = 30000;
+  s.beam_count = 1081;
+  for (std::size_t i = 0; i < 1081; ++i) s.range_mm[i] = static_cast<uint16_t>(i * 27 % 30000);
+  return s;
+}
+
+struct Decoded {
+  uint8_t type = 0;
+  std::array<uint8_t, kHilMaxPayload> payload{};
+  std::size_t size = 0;
+  int frames = 0;
+};
+
+Decoded feed(HilDecoder& d, const uint8_t* bytes, std::size_t n) {
+  Decoded out;
+  for (std::size_t i = 0; i < n; ++i)
+    if (d.push(bytes[i])) {
+      out.type = d.type();
+      out.size = d.size();
+      std::memcpy(out.payload.data(), d.payload(), d.size());
+      ++out.frames;
+    }
+  return out;
+}
+
+TEST(HilCodec, LaserScanRoundTripsBitExactly) {
+  static uint8_t payload[kHilMaxPayload], frame[kHilMaxPayload + kHilOverhead];
+  const LaserScan in = make_scan();
+  const std::size_t p = encode_payload(in, payload, sizeof(payload));
+  ASSERT_GT(p, 0u);
+  const std::size_t f = hil_encode(static_cast<uint8_t>(HilType::kLaserScan), payload, p, frame, sizeof(frame));
+  ASSERT_EQ(f, p + kHilOverhead);
+  static HilDecoder d;
+  const Decoded got = feed(d, frame, f);
+  ASSERT_EQ(got.frames, 1);
+  EXPECT_EQ(got.type, static_cast<uint8_t>(HilType::kLaserScan));
+  static LaserScan out;
+  ASSERT_EQ(decode_payload(got.payload.data(), got.size, out), Status::kOk);
+  EXPECT_EQ(out.stamp, in.stamp);
+  EXPECT_EQ(out.beam_interval, in.beam_interval);
+  EXPECT_EQ(out.first_angle_rad, in.first_angle_rad);
+  EXPECT_EQ(out.beam_count, in.beam_count);
+  EXPECT_EQ(std::memcmp(out.range_mm.data(), in.range_mm.data(), 1081 * 2), 0);
+}
+
+TEST(HilCodec, ResynchronisesAfterGarbageAndCorruption) {
+  uint8_t payload[64], frame[128], stream[512];
+  ImuSample imu;
+  imu.stamp = TimeUs::from_us(42);
+  imu.accel_mps2 = {0.1f, -0.2f, 9.81f};
+  const std::size_t p = encode_payload(imu, payload, sizeof(payload));
+  const std::size_t f = hil_encode(static_cast<uint8_t>(HilType::kImu), payload, p, frame, sizeof(frame));
+  std::size_t n = 0;
+  const uint8_t junk[] = {0x00, 0xA5, 0x13, 0xA5, 0xA5};
+  std::memcpy(stream + n, junk, sizeof(junk));
+  n += sizeof(junk);
+  std::memcpy(stream + n, frame, f);  // a corrupted copy
+  stream[n + 9] ^= 0x40;
+  n += f;
+  std::memcpy(stream + n, frame, f);  // a good copy
+  n += f;
+  HilDecoder d;
+  const Decoded got = feed(d, stream, n);
+  EXPECT_EQ(got.frames, 1);
+  EXPECT_EQ(d.crc_errors(), 1u);
+  ImuSample out;
+  ASSERT_EQ(decode_payload(got.payload.data(), got.size, out), Status::kOk);
+  EXPECT_EQ(out.stamp.us, 42);
+  EXPECT_FLOAT_EQ(out.accel_mps2.z(), 9.81f);
+}
+
+TEST(HilCodec, ImpossibleLengthIsDroppedAndCounted) {
+  const uint8_t bad[] = {kHilSync0, kHilSync1, 1, 0xFF, 0xFF};
+  HilDecoder d;
+  EXPECT_EQ(feed(d, bad, sizeof(bad)).frames, 0);
+  EXPECT_EQ(d.length_errors(), 1u);
+}
+
+TEST(HilMessages, PayloadsOfTheWrongSizeOrWithNaNAreRejected) {
+  uint8_t buf[64];
+  AttitudeSetpoint sp;
+  sp.thrust = std::nanf("");
+  const std::size_t n = encode_payload(sp, buf, sizeof(buf));
+  AttitudeSetpoint out;
+  EXPECT_EQ(decode_payload(buf, n, out), Status::kNotFinite);
+  EXPECT_EQ(decode_payload(buf, n - 1, out), Status::kMalformed);
+  uint8_t big[64] = {};
+  std::memcpy(big, buf, n);
+  EXPECT_EQ(decode_payload(big, n + 1, out), Status::kMalformed);
+  LaserScan scan;
+  uint8_t header[32] = {};
+  header[30] = 0xFF;  // beam count 0xFF.. beyond kMaxBeams
+  header[31] = 0xFF;
+  EXPECT_EQ(decode_payload(header, sizeof(header), scan), Status::kMalformed);
+  bool armed = false;
+  const uint8_t two = 2;
+  EXPECT_EQ(decode_arm(&two, 1, armed), Status::kMalformed);
+  EXPECT_EQ(encode_payload(sp, buf, 4), 0u);  // too small a buffer is refused, not overrun
+}
+
+TEST(HilMessages, StatusAndArmRoundTrip) {
+  uint8_t buf[64];
+  FlightStatus st;
+  st.stamp = TimeUs::from_us(-5);
+  st.armed = true;
+  st.battery_v = 11.1f;
+  st.pitch_rad = 0.05f;
+  FlightStatus out;
+  ASSERT_EQ(decode_payload(buf, encode_payload(st, buf, sizeof(buf)), out), Status::kOk);
+  EXPECT_TRUE(out.armed);
+  EXPECT_EQ(out.stamp.us, -5);
+  EXPECT_FLOAT_EQ(out.pitch_rad, 0.05f);
+  bool armed = false;
+  ASSERT_EQ(decode_arm(buf, encode_arm(true, buf, sizeof(buf)), armed), Status::kOk);
+  EXPECT_TRUE(armed);
+}
+
+TEST(HilCodec, DecodingAStreamDoesNotAllocate) {
+  static uint8_t payload[kHilMaxPayload], frame[kHilMaxPayload + kHilOverhead];
+  const LaserScan in = make_scan();
+  const std::size_t f = hil_encode(1, payload, encode_payload(in, payload, sizeof(payload)), frame, sizeof(frame));
+  static HilDecoder d;
+  static LaserScan out;
+  alloc_guard::Scope guard;
+  int frames = 0;
+  for (int k = 0; k < 20; ++k)
+    for (std::size_t i = 0; i < f; ++i)
+      if (d.push(frame[i]) && decode_payload(d.payload(), d.size(), out) == Status::kOk) ++frames;
+  EXPECT_EQ(frames, 20);
+  EXPECT_EQ(guard.allocations(), 0u);
+}
+
+}  // namespace
+}  // namespace kestrel::comms

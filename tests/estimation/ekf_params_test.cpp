@@ -1,0 +1,91 @@
+// Parameter files: round trip, and a clear error for every kind of bad line.
+#include "kestrel/estimation/ekf_params.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+namespace kestrel::estimation {
+namespace {
+
+TEST(EkfParams, WriteThenParseRoundTrips) {
+  EkfParams p;
+  p.accel_noise_xy = 1.2345678e-4f;
+  p.pose_cov_scale = 3.5f;
+  p.gyro_bias_walk = 7.5e-11f;
+  char buf[params::kMaxParamFileBytes];
+  const auto n = params::write_params(ekf_param_fields(p), "test", buf, sizeof(buf));
+  ASSERT_TRUE(n.ok());
+  EXPECT_NE(std::strstr(buf, "accel_noise_xy = "), nullptr);
+  EXPECT_NE(std::strstr(buf, "(m/s^2)^2/Hz"), nullptr);  // units in the comments
+  EkfParams q;
+  params::ParamError err;
+  ASSERT_EQ(params::parse_params(std::string_view(buf, n.value()), ekf_param_fields(q), err), Status::kOk) << err.message;
+  EXPECT_EQ(q.accel_noise_xy, p.accel_noise_xy);
+  EXPECT_EQ(q.pose_cov_scale, p.pose_cov_scale);
+  EXPECT_EQ(q.gyro_bias_walk, p.gyro_bias_walk);
+  EXPECT_EQ(validate(q), Status::kOk);
+  // Too small a buffer is an error, not a truncated file.
+  EXPECT_EQ(params::write_params(ekf_param_fields(p), "test", buf, 100).status(), Status::kCapacityExceeded);
+}
+
+struct BadCase {
+  const char* text;
+  Status status;
+  int line;
+  const char* in_message;
+};
+
+TEST(EkfParams, BadLinesAreClearErrorsAndChangeNothing) {
+  const BadCase cases[] = {
+      {"# ok\naccel_noise_xy = 1e-3\nacel_noise_z = 1e-3\n", Status::kNotFound, 3, "unknown key 'acel_noise_z'"},
+      {"pose_cov_scale = 2\npose_cov_scale = 3\n", Status::kMalformed, 2, "duplicate key 'pose_cov_scale'"},
+      {"pose_cov_scale 2\n", Status::kMalformed, 1, "expected 'key = value'"},
+      {"pose_cov_scale =\n", Status::kMalformed, 1, "has no value"},
+      {"pose_cov_scale = two\n", Status::kMalformed, 1, "not a number"},
+      {"pose_cov_scale = 2 m\n", Status::kMalformed, 1, "not a number"},
+      {"pose_cov_scale = nan\n", Status::kNotFinite, 1, "not finite"},
+      {"pose_cov_scale = -1\n", Status::kOutOfRange, 1, "outside"},
+      {"\n\ngravity_mps2 = 1.6\n", Status::kOutOfRange, 3, "'gravity_mps2'"},
+  };
+  for (const BadCase& bc : cases) {
+    EkfParams p;
+    p.accel_noise_xy = 5e-3f;
+    params::ParamError err;
+    EXPECT_EQ(params::parse_params(bc.text, ekf_param_fields(p), err), bc.status) << bc.text;
+    EXPECT_EQ(err.line, bc.line) << bc.text;
+    EXPECT_NE(std::strstr(err.message, bc.in_message), nullptr) << err.message;
+    EXPECT_EQ(p.accel_noise_xy, 5e-3f);  // all or nothing
+  }
+}
+
+TEST(EkfParams, LoadsAFileAndReportsAMissingOne) {
+  const std::string path = testing::TempDir() + "ekf_params_test.params";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("# learnt\r\naccel_noise_xy = 2.5e-4   # trailing comment\r\n\r\n  pose_cov_scale=0.5\n", f);
+    std::fclose(f);
+  }
+  EkfParams p;
+  params::ParamError err;
+  ASSERT_EQ(load_ekf_params(path.c_str(), p, err), Status::kOk) << err.message;
+  EXPECT_FLOAT_EQ(p.accel_noise_xy, 2.5e-4f);
+  EXPECT_FLOAT_EQ(p.pose_cov_scale, 0.5f);
+  EXPECT_FLOAT_EQ(p.accel_noise_z, EkfParams{}.accel_noise_z);  // absent keys keep defaults
+  std::remove(path.c_str());
+  EXPECT_EQ(load_ekf_params(path.c_str(), p, err), Status::kIoError);
+  EXPECT_NE(std::strstr(err.message, "cannot open"), nullptr);
+  // Saving and loading through the file functions.
+  p.gyro_noise = 3e-6f;
+  ASSERT_EQ(params::save_params_file(path.c_str(), ekf_param_fields(p), "saved", err), Status::kOk);
+  EkfParams q;
+  ASSERT_EQ(load_ekf_params(path.c_str(), q, err), Status::kOk) << err.message;
+  EXPECT_EQ(q.gyro_noise, p.gyro_noise);
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace kestrel::estimation

@@ -1,0 +1,270 @@
+// The navigation filter on synthetic flights: consistency (NEES), bias estimation, the
+// attitude convention, outlier gating, bad inputs and the allocation guard.
+#include "kestrel/estimation/nav_filter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <memory>
+
+#include "kestrel/core/alloc_guard.hpp"
+#include "synthetic_flight.hpp"
+
+namespace kestrel::estimation {
+namespace {
+
+using test::make_flight;
+using test::matched_params;
+using test::StreamPlayer;
+using test::SyntheticConfig;
+
+// NEES of one axis' [p, v, b] against truth; the bias truth is the world-frame bias.
+double axis_nees(const NavFilter& f, int axis, float p, float v, float b) {
+  const AxisState& a = f.axis(axis);
+  const Eigen::Vector3f e = a.x - Eigen::Vector3f(p, v, b);
+  return static_cast<double>(e.dot(a.P.inverse() * e));
+}
+
+Eigen::Vector3f world_bias(const test::SyntheticFlight& fl, float psi) {
+  const float c = std::cos(psi), s = std::sin(psi);
+  return {c * fl.accel_bias.x() - s * fl.accel_bias.y(), s * fl.accel_bias.x() + c * fl.accel_bias.y(),
+          fl.accel_bias.z()};
+}
+
+// GIVEN N flights whose noise matches the filter's parameters, WHEN the filter runs,
+// THEN the mean NEES over the flights lies inside the two-sided 99 % chi-square bounds
+// at (nearly) every check time: chi2(3N) for each axis, chi2(2N) for the heading.
+TEST(NavFilter, NeesInsideChiSquareBoundsOnSyntheticFlights) {
+  constexpr int kRuns = 20;
+  // chi2 quantiles 0.005 and 0.995 for 60 and 40 degrees of freedom.
+  const double lo3 = 35.53 / kRuns, hi3 = 91.95 / kRuns;
+  const double lo2 = 20.71 / kRuns, hi2 = 66.77 / kRuns;
+  constexpr int kChecks = 16;
+  std::array<std::array<double, 4>, kChecks> sum{};
+  auto filter = std::make_unique<NavFilter>();
+  for (int r = 0; r < kRuns; ++r) {
+    SyntheticConfig c;
+    c.duration_s = 17.0;
+    c.seed = 100 + static_cast<uint32_t>(r);
+    const auto fl = make_flight(c);
+    filter->reset();
+    ASSERT_EQ(filter->set_params(matched_params(c)), Status::kOk);
+    StreamPlayer player(fl, Duration::from_ms(20));
+    for (int k = 0; k < kChecks; ++k) {
+      const TimeUs t = TimeUs::from_s(1.0 + static_cast<double>(k));
+      player.play_until(*filter, t);
+      const std::size_t i = player.truth_index(filter->state().stamp);
+      const auto& tr = fl.truth[i];
+      const Eigen::Vector3f b = world_bias(fl, fl.heading[i]);
+      for (int ax = 0; ax < 3; ++ax) {
+        sum[k][static_cast<std::size_t>(ax)] += axis_nees(*filter, ax, tr.position_m(ax), tr.velocity_mps(ax), b(ax));
+      }
+      const HeadingState& h = filter->heading();
+      const Eigen::Vector2f e(angle_diff(h.x(0), fl.heading[i]), h.x(1) - fl.gyro_bias);
+      sum[k][3] += static_cast<double>(e.dot(h.P.inverse() * e));
+    }
+    // A consistent filter gates out about 0.1 % of good poses (680 per flight) at the 99.9 % gate.
+    EXPECT_LE(player.pose_failures, 4) << to_string(player.last_failure) << " at " << player.failure_at.us << " us";
+  }
+  int outside = 0;
+  for (int k = 0; k < kChecks; ++k) {
+    for (int ax = 0; ax < 4; ++ax) {
+      const double m = sum[k][static_cast<std::size_t>(ax)] / kRuns;
+      const bool in = ax < 3 ? (m > lo3 && m < hi3) : (m > lo2 && m < hi2);
+      if (!in) {
+        ++outside;
+        ADD_FAILURE() << "t=" << 1 + k << " s, axis " << ax << ": mean NEES " << m;
+      }
+    }
+  }
+  // 64 checks at 99 %: allow none to be far out; the loop above already reports each one.
+  EXPECT_EQ(outside, 0);
+}
+
+// GIVEN a 60 s flight with constant biases, THEN the estimated biases converge to them.
+TEST(NavFilter, AccelerometerAndGyroBiasesConverge) {
+  SyntheticConfig c;
+  c.duration_s = 60.0;
+  c.seed = 7;
+  c.accel_bias_sigma = 0.2f;
+  c.draw_biases = false;
+  c.accel_bias = Eigen::Vector3f(0.15f, -0.2f, 0.1f);
+  c.gyro_bias = 0.012f;
+  const auto fl = make_flight(c);
+  auto filter = std::make_unique<NavFilter>(matched_params(c));
+  StreamPlayer player(fl, Duration::from_ms(25));
+  player.play_until(*filter, TimeUs::from_s(60.0));
+  const std::size_t i = player.truth_index(filter->state().stamp);
+  const Eigen::Vector3f b = world_bias(fl, fl.heading[i]);
+  for (int ax = 0; ax < 3; ++ax) {
+    EXPECT_NEAR(filter->axis(ax).x(2), b(ax), 0.02f) << "axis " << ax;
+    EXPECT_LT(std::sqrt(filter->axis(ax).P(2, 2)), 0.02f);
+  }
+  EXPECT_NEAR(filter->heading().x(1), fl.gyro_bias, 1e-3f);
+  EXPECT_GT(std::abs(fl.gyro_bias), 1e-3f);  // the test means something
+  // And the velocity it reports is good.
+  EXPECT_LT((filter->state().velocity_mps - fl.truth[i].velocity_mps).norm(), 0.05f);
+}
+
+// GIVEN a quadrotor-like flight (thrust on body z, acceleration from roll and pitch reported in
+// FlightStatus with AttitudeSetpoint conventions), THEN the velocity is as good as level flight.
+TEST(NavFilter, UsesRollAndPitchWithAttitudeSetpointConventions) {
+  SyntheticConfig c;
+  c.duration_s = 20.0;
+  c.tilt = true;
+  c.amplitude = 2.0f;
+  c.seed = 11;
+  const auto fl = make_flight(c);
+  auto filter = std::make_unique<NavFilter>(matched_params(c));
+  StreamPlayer player(fl, Duration::from_ms(25));
+  double sum = 0;
+  int n = 0;
+  for (double t = 5.0; t <= 20.0; t += 0.5) {
+    player.play_until(*filter, TimeUs::from_s(t));
+    const std::size_t i = player.truth_index(filter->state().stamp);
+    sum += (filter->state().velocity_mps - fl.truth[i].velocity_mps).norm();
+    ++n;
+  }
+  EXPECT_LT(sum / n, 0.03);
+  // Ignoring the attitude (level assumption) on the same flight is clearly worse: the
+  // convention is what carries the horizontal acceleration.
+  auto level = std::make_unique<NavFilter>(matched_params(c));
+  test::SyntheticFlight no_att = fl;
+  for (auto& s : no_att.attitude) s.roll_rad = s.pitch_rad = 0;
+  StreamPlayer p2(no_att, Duration::from_ms(25));
+  double sum2 = 0;
+  for (double t = 5.0; t <= 20.0; t += 0.5) {
+    p2.play_until(*level, TimeUs::from_s(t));
+    const std::size_t i = p2.truth_index(level->state().stamp);
+    sum2 += (level->state().velocity_mps - fl.truth[i].velocity_mps).norm();
+  }
+  EXPECT_GT(sum2 / n, 2.0 * sum / n);
+}
+
+// GIVEN a scan-matcher jump of 1 m, THEN it is gated out, counted, and the state does not move.
+TEST(NavFilter, GatesOutScanMatcherJumps) {
+  SyntheticConfig c;
+  c.seed = 3;
+  const auto clean = make_flight(c);
+  auto jumped = clean;
+  int jumps = 0;
+  for (PoseMeasurement2& p : jumped.poses) {
+    if (p.stamp >= TimeUs::from_s(10.0) && p.stamp < TimeUs::from_s(10.1)) {
+      p.pose.x += 1.0f;  // four consecutive scans jump
+      ++jumps;
+    }
+  }
+  ASSERT_EQ(jumps, 4);
+  auto ref = std::make_unique<NavFilter>(matched_params(c));
+  auto filter = std::make_unique<NavFilter>(matched_params(c));
+  StreamPlayer p_ref(clean, Duration::from_ms(25));
+  StreamPlayer player(jumped, Duration::from_ms(25));
+  p_ref.play_until(*ref, TimeUs::from_s(10.2));
+  player.play_until(*filter, TimeUs::from_s(10.2));
+  EXPECT_EQ(filter->counters().pose_rejected, ref->counters().pose_rejected + 4u);
+  EXPECT_EQ(player.pose_failures, p_ref.pose_failures + 4);
+  const std::size_t i = player.truth_index(filter->state().stamp);
+  EXPECT_LT((filter->state().position_m - clean.truth[i].position_m).norm(), 0.03f);
+}
+
+TEST(NavFilter, BadInputsHaveDefinedBehaviour) {
+  auto filter = std::make_unique<NavFilter>();
+  ImuSample imu;
+  imu.accel_mps2 = Eigen::Vector3f(0, 0, 9.80665f);
+  imu.stamp = TimeUs::from_us(0000);
+  // Before the first pose: no state, and the IMU is only remembered.
+  EXPECT_EQ(filter->predict(imu), Status::kNoData);
+  EXPECT_FALSE(filter->state().valid);
+  AltimeterSample alt{TimeUs::from_us(0000), 1.5f, 1e-4f};
+  EXPECT_EQ(filter->update_altitude(alt), Status::kNoData);
+  PoseMeasurement2 pm;
+  pm.stamp = TimeUs::from_us(0000);
+  pm.pose = Pose2{1.0f, 2.0f, 0.5f};
+  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  EXPECT_EQ(filter->apply_correction(pm), Status::kNoData);
+  EXPECT_EQ(filter->update_pose(pm), Status::kOk);
+  ASSERT_TRUE(filter->state().valid);
+  EXPECT_FLOAT_EQ(filter->state().position_m.z(), 1.5f);  // from the altimeter seen before
+  EXPECT_FLOAT_EQ(filter->state().heading_rad, 0.5f);
+
+  // NaN IMU: rejected, counted, state unchanged.
+  imu.stamp = TimeUs::from_us(5000);
+  ImuSample bad = imu;
+  bad.accel_mps2.x() = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(filter->predict(bad), Status::kNotFinite);
+  bad = imu;
+  bad.gyro_radps.z() = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(filter->predict(bad), Status::kNotFinite);
+  EXPECT_EQ(filter->counters().imu_not_finite, 2u);
+  EXPECT_EQ(filter->predict(imu), Status::kOk);
+  // Time going backwards or standing still: dropped and counted.
+  imu.stamp = TimeUs::from_us(5000);
+  EXPECT_EQ(filter->predict(imu), Status::kTimeJump);
+  imu.stamp = TimeUs::from_us(3000);
+  EXPECT_EQ(filter->predict(imu), Status::kTimeJump);
+  EXPECT_EQ(filter->counters().imu_time_backwards, 2u);
+  // A huge gap: coasts, restarts the history, and the filter keeps working afterwards.
+  imu.stamp = TimeUs::from_s(10.0);
+  EXPECT_EQ(filter->predict(imu), Status::kTimeJump);
+  EXPECT_EQ(filter->counters().imu_gaps, 1u);
+  EXPECT_EQ(filter->history_span().us, 0);
+  EXPECT_TRUE(filter->state().position_m.allFinite());
+  imu.stamp = TimeUs::from_s(10.005);
+  EXPECT_EQ(filter->predict(imu), Status::kOk);
+  pm.stamp = imu.stamp;
+  EXPECT_EQ(filter->update_pose(pm), Status::kOk);
+  // Measurements: non-finite, invalid covariance, from before the history, from the future.
+  PoseMeasurement2 nan_pose = pm;
+  nan_pose.pose.y = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(filter->update_pose(nan_pose), Status::kNotFinite);
+  PoseMeasurement2 neg_cov = pm;
+  neg_cov.covariance(1, 1) = -1.0f;
+  EXPECT_EQ(filter->update_pose(neg_cov), Status::kInvalidArgument);
+  PoseMeasurement2 old = pm;
+  old.stamp = TimeUs::from_s(9.0);
+  EXPECT_EQ(filter->update_pose(old), Status::kOutOfRange);
+  EXPECT_EQ(filter->apply_correction(old), Status::kOutOfRange);
+  EXPECT_EQ(filter->counters().meas_too_old, 2u);
+  PoseMeasurement2 future = pm;
+  future.stamp = TimeUs::from_s(11.0);
+  EXPECT_EQ(filter->update_pose(future), Status::kTimeJump);
+  EXPECT_EQ(filter->counters().meas_future, 1u);
+  alt.stamp = imu.stamp;
+  alt.height_m = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(filter->update_altitude(alt), Status::kNotFinite);
+  alt.height_m = 1.5f;
+  alt.variance_m2 = -1.0f;
+  EXPECT_EQ(filter->update_altitude(alt), Status::kInvalidArgument);
+  alt.variance_m2 = 0.0f;  // no variance given: the parameter is used
+  EXPECT_EQ(filter->update_altitude(alt), Status::kOk);
+  EXPECT_TRUE(filter->state().position_m.allFinite());
+  // Invalid parameters are refused and the old ones kept.
+  EkfParams p;
+  p.accel_noise_xy = -1.0f;
+  EXPECT_EQ(filter->set_params(p), Status::kInvalidArgument);
+  EXPECT_GT(filter->params().accel_noise_xy, 0.0f);
+}
+
+// GIVEN a filter with a full history, WHEN it predicts, updates in order, updates late and
+// applies an old correction, THEN nothing touches the heap.
+TEST(NavFilter, NoAllocationInPredictUpdateOrCorrection) {
+  SyntheticConfig c;
+  c.duration_s = 8.0;
+  const auto fl = make_flight(c);
+  auto filter = std::make_unique<NavFilter>(matched_params(c));
+  StreamPlayer player(fl, Duration::from_ms(30));
+  player.play_until(*filter, TimeUs::from_s(6.0));
+  alloc_guard::Scope guard;
+  player.play_until(*filter, TimeUs::from_s(8.0));  // predicts and late updates
+  PoseMeasurement2 corr;
+  corr.stamp = TimeUs::from_s(6.5);
+  corr.pose = Pose2{0.1f, 0.2f, 0.05f};
+  (void)filter->apply_correction(corr);
+  const NavState s = filter->state();
+  EXPECT_EQ(guard.allocations(), 0u);
+  EXPECT_TRUE(s.valid);
+  EXPECT_GT(filter->counters().replays, 0u);
+}
+
+}  // namespace
+}  // namespace kestrel::estimation

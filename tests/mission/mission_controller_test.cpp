@@ -1,0 +1,178 @@
+#include "kestrel/mission/mission_controller.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "kestrel/core/alloc_guard.hpp"
+
+namespace kestrel::mission {
+namespace {
+
+// A vehicle that goes exactly where it is told, at most `speed` per second: enough to drive
+// the state machine through its phases.
+struct PointVehicle {
+  NavState nav;
+  float speed = 1.0f;
+  void follow(const GuidanceSetpoint& s, float dt) {
+    Eigen::Vector3f target = s.position_m;
+    if (s.mode == GuidanceSetpoint::Mode::kVelocity) {
+      target = nav.position_m + s.velocity_mps * dt;
+      target.z() = s.position_m.z();
+    }
+    Eigen::Vector3f d = target - nav.position_m;
+    const float max_step = speed * dt;
+    if (d.norm() > max_step) d *= max_step / d.norm();
+    if (nav.position_m.z() + d.z() < 0) d.z() = -nav.position_m.z();  // the floor stops it
+    nav.velocity_mps = d / dt;
+    nav.position_m += d;
+  }
+};
+
+struct MissionRun {
+  MissionController mc;
+  PointVehicle v;
+  TimeUs t;
+  static constexpr float kDt = 0.025f;
+
+  MissionRun() {
+    v.nav.valid = true;
+    v.nav.position_m = {1, 2, 0};
+  }
+  GuidanceSetpoint step(const ExplorerOutput* e = nullptr) {
+    t += Duration::from_s(kDt);
+    v.nav.stamp = t;
+    const GuidanceSetpoint s = mc.step(t, v.nav, e);
+    v.follow(s, kDt);
+    return s;
+  }
+  bool run_until(Phase p, float max_s, const ExplorerOutput* e = nullptr) {
+    for (float s = 0; s < max_s; s += kDt) {
+      step(e);
+      if (mc.phase() == p) return true;
+    }
+    return false;
+  }
+};
+
+TEST(MissionController, HoverMissionTakesOffHoversAndLands) {
+  MissionRun r;
+  MissionParams p;
+  p.hover_duration_s = 5;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
+  EXPECT_FALSE(r.mc.wants_armed());
+  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  EXPECT_TRUE(r.mc.wants_armed());
+  EXPECT_NEAR(r.v.nav.position_m.z(), 1.0f, 0.15f);
+  EXPECT_NEAR(r.v.nav.position_m.x(), 1.0f, 1e-4f);
+  const TimeUs hover_start = r.t;
+  ASSERT_TRUE(r.run_until(Phase::kLand, 10));
+  EXPECT_NEAR((r.t - hover_start).seconds(), 5.0, 0.1);
+  ASSERT_TRUE(r.run_until(Phase::kLanded, 10));
+  EXPECT_TRUE(r.mc.finished());
+  EXPECT_FALSE(r.mc.wants_armed());
+}
+
+TEST(MissionController, WaypointsAreVisitedInOrderWithHolds) {
+  MissionRun r;
+  StaticVector<Waypoint, 4> wps;
+  ASSERT_TRUE(wps.push_back({{3, 2, 1}, 0, 1.0f}));
+  ASSERT_TRUE(wps.push_back({{3, 5, 1.5f}, 1.0f, 0}));
+  ASSERT_EQ(r.mc.configure(MissionKind::kWaypoints, {}, &wps), Status::kOk);
+  ASSERT_TRUE(r.run_until(Phase::kWaypoints, 10));
+  bool saw_second = false;
+  for (int i = 0; i < 2000 && r.mc.phase() == Phase::kWaypoints; ++i) {
+    r.step();
+    if (r.mc.waypoint_index() == 1) {
+      saw_second = true;
+      EXPECT_NEAR(r.v.nav.position_m.x(), 3.0f, 0.2f);  // left only after reaching the first
+    }
+  }
+  EXPECT_TRUE(saw_second);
+  EXPECT_EQ(r.mc.phase(), Phase::kLand);
+  EXPECT_NEAR(r.v.nav.position_m.y(), 5.0f, 0.2f);
+}
+
+TEST(MissionController, ExploreThenReturnsAlongTheTrailAndLandsAtHome) {
+  MissionRun r;
+  MissionParams p;
+  ASSERT_EQ(r.mc.configure(MissionKind::kExplore, p), Status::kOk);
+  ExplorerOutput e;
+  e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
+  ASSERT_TRUE(r.run_until(Phase::kExplore, 10, &e));
+  // Explore an L: +x for 4 s then +y for 3 s, at 0.5 m/s.
+  e.setpoint.velocity_mps = {0.5f, 0, 0};
+  for (int i = 0; i < 160; ++i) r.step(&e);
+  e.setpoint.velocity_mps = {0, 0.5f, 0};
+  for (int i = 0; i < 120; ++i) r.step(&e);
+  EXPECT_NEAR(r.v.nav.position_m.x(), 3.0f, 0.2f);
+  EXPECT_NEAR(r.v.nav.position_m.y(), 3.5f, 0.2f);
+  e.finished = true;
+  r.step(&e);
+  EXPECT_EQ(r.mc.phase(), Phase::kReturn);
+  // On the way home it must pass the corner of the L, never cut across it.
+  bool passed_corner = false;
+  for (int i = 0; i < 4000 && r.mc.phase() == Phase::kReturn; ++i) {
+    const Eigen::Vector3f before = r.v.nav.position_m;
+    const GuidanceSetpoint s = r.step(&e);
+    if ((r.v.nav.position_m.head<2>() - Eigen::Vector2f(3.0f, 2.0f)).norm() < 0.35f) passed_corner = true;
+    // The carrot stays within one second of travel at the return speed.
+    EXPECT_LE((s.position_m - before).head<2>().norm(), p.return_speed_mps + 1e-4f);
+    EXPECT_LE(s.velocity_mps.norm(), p.return_speed_mps + 1e-4f);
+  }
+  EXPECT_TRUE(passed_corner);
+  EXPECT_EQ(r.mc.phase(), Phase::kLand);
+  EXPECT_NEAR(r.v.nav.position_m.x(), 1.0f, 0.2f);
+  EXPECT_NEAR(r.v.nav.position_m.y(), 2.0f, 0.2f);
+}
+
+TEST(MissionController, StaleEstimateTriggersFailsafeLanding) {
+  MissionRun r;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, {}), Status::kOk);
+  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  r.v.nav.valid = false;
+  ASSERT_TRUE(r.run_until(Phase::kFailsafeLand, 1.0f));
+  const GuidanceSetpoint s = r.step();
+  EXPECT_EQ(s.mode, GuidanceSetpoint::Mode::kVelocity);
+  EXPECT_TRUE(s.velocity_mps.isZero());
+  ASSERT_TRUE(r.run_until(Phase::kLanded, 20));
+}
+
+TEST(MissionController, NaNEstimateIsTreatedAsInvalid) {
+  MissionRun r;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, {}), Status::kOk);
+  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  r.v.nav.position_m.x() = std::nanf("");
+  r.v.nav.velocity_mps.setZero();
+  for (int i = 0; i < 40; ++i) {
+    const GuidanceSetpoint s = r.mc.step(r.t += Duration::from_ms(25), r.v.nav, nullptr);
+    EXPECT_TRUE(std::isfinite(s.position_m.z()));
+    EXPECT_TRUE(std::isfinite(s.heading_rad));
+  }
+  EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
+}
+
+TEST(MissionController, RejectsBadConfiguration) {
+  MissionController mc;
+  MissionParams p;
+  p.takeoff_altitude_m = std::nanf("");
+  EXPECT_EQ(mc.configure(MissionKind::kHover, p), Status::kInvalidArgument);
+  EXPECT_EQ(mc.configure(MissionKind::kWaypoints, {}, nullptr), Status::kInvalidArgument);
+  StaticVector<Waypoint, 2> wps;
+  ASSERT_TRUE(wps.push_back({{1, 1, -1}, 0, 0}));  // below the floor
+  EXPECT_EQ(mc.configure(MissionKind::kWaypoints, {}, &wps), Status::kInvalidArgument);
+}
+
+TEST(MissionController, StepsDoNotAllocate) {
+  MissionRun r;
+  ASSERT_EQ(r.mc.configure(MissionKind::kExplore, {}), Status::kOk);
+  ExplorerOutput e;
+  e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
+  e.setpoint.velocity_mps = {0.3f, 0.1f, 0};
+  alloc_guard::Scope guard;
+  for (int i = 0; i < 4000; ++i) r.step(&e);
+  EXPECT_EQ(guard.allocations(), 0u);
+}
+
+}  // namespace
+}  // namespace kestrel::mission

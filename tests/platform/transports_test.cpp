@@ -1,0 +1,122 @@
+// Loopback exchanges over the byte transports the drivers sit on: TCP, UDP and a serial line
+// (a pseudo-terminal pair stands in for the USB-serial Hokuyo).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <cstring>
+
+#include "kestrel/platform/linux/serial_port.hpp"
+#include "kestrel/platform/linux/tcp_link.hpp"
+#include "kestrel/platform/linux/udp_link.hpp"
+
+namespace kestrel::platform {
+namespace {
+
+// Reads until `want` bytes have arrived or a second has passed.
+std::size_t read_all(FdLink& link, uint8_t* out, std::size_t want) {
+  std::size_t got = 0;
+  for (int i = 0; i < 100 && got < want; ++i) {
+    if (link.wait_readable(Duration::from_ms(10)) != Status::kOk) continue;
+    const Result<std::size_t> r = link.read(out + got, want - got);
+    if (!r.ok()) break;
+    got += r.value();
+  }
+  return got;
+}
+
+TEST(TcpLink, LoopbackExchangeBothWaysAndCloseIsSeen) {
+  TcpListener listener;
+  ASSERT_EQ(listener.listen("127.0.0.1", 0), Status::kOk);
+  ASSERT_NE(listener.port(), 0);
+  TcpLink client, server;
+  ASSERT_EQ(client.connect("127.0.0.1", listener.port(), Duration::from_ms(1000)), Status::kOk);
+  ASSERT_EQ(listener.accept(server, Duration::from_ms(1000)), Status::kOk);
+
+  const char msg[] = "GD0000108001";  // a SCIP request, as a Hokuyo driver would send
+  const Result<std::size_t> w = client.write(reinterpret_cast<const uint8_t*>(msg), sizeof(msg));
+  ASSERT_TRUE(w.ok());
+  EXPECT_EQ(w.value(), sizeof(msg));
+  uint8_t buf[64] = {};
+  ASSERT_EQ(read_all(server, buf, sizeof(msg)), sizeof(msg));
+  EXPECT_EQ(std::memcmp(buf, msg, sizeof(msg)), 0);
+
+  const uint8_t reply[3] = {1, 2, 3};
+  ASSERT_TRUE(server.write(reply, 3).ok());
+  ASSERT_EQ(read_all(client, buf, 3), 3u);
+  EXPECT_EQ(buf[2], 3);
+
+  // Nothing waiting: a non-blocking read returns zero bytes, not an error.
+  const Result<std::size_t> none = client.read(buf, sizeof(buf));
+  ASSERT_TRUE(none.ok());
+  EXPECT_EQ(none.value(), 0u);
+
+  server.close();
+  EXPECT_EQ(client.wait_readable(Duration::from_ms(500)), Status::kOk);
+  EXPECT_EQ(client.read(buf, sizeof(buf)).status(), Status::kClosed);
+  EXPECT_EQ(server.read(buf, sizeof(buf)).status(), Status::kClosed);
+}
+
+TEST(TcpLink, ConnectionRefusedAndBadAddressAreErrors) {
+  uint16_t port = 0;
+  {
+    TcpListener listener;
+    ASSERT_EQ(listener.listen("127.0.0.1", 0), Status::kOk);
+    port = listener.port();
+  }  // closed: nobody listens on the port now
+  TcpLink client;
+  EXPECT_NE(client.connect("127.0.0.1", port, Duration::from_ms(500)), Status::kOk);
+  EXPECT_EQ(client.connect("not-an-ip", 80, Duration::from_ms(10)), Status::kInvalidArgument);
+}
+
+TEST(UdpLink, DatagramsBothWays) {
+  UdpLink a, b;
+  ASSERT_EQ(a.open("127.0.0.1", 0), Status::kOk);
+  ASSERT_EQ(b.open("127.0.0.1", 0), Status::kOk);
+  ASSERT_EQ(a.connect_peer("127.0.0.1", b.local_port()), Status::kOk);
+  ASSERT_EQ(b.connect_peer("127.0.0.1", a.local_port()), Status::kOk);
+  const uint8_t ping[5] = {'p', 'i', 'n', 'g', 0};
+  ASSERT_TRUE(a.write(ping, 5).ok());
+  uint8_t buf[16] = {};
+  ASSERT_EQ(read_all(b, buf, 5), 5u);
+  EXPECT_STREQ(reinterpret_cast<char*>(buf), "ping");
+  ASSERT_TRUE(b.write(ping, 2).ok());
+  ASSERT_EQ(read_all(a, buf, 2), 2u);
+  EXPECT_EQ(a.connect_peer("bad", 1), Status::kInvalidArgument);
+}
+
+TEST(SerialPort, PseudoTerminalPairCarriesBytes) {
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(grantpt(master), 0);
+  ASSERT_EQ(unlockpt(master), 0);
+  const char* slave_name = ptsname(master);
+  ASSERT_NE(slave_name, nullptr);
+  ASSERT_EQ(set_nonblocking(master), Status::kOk);
+  FdLink device(master);  // the "Hokuyo" end
+
+  SerialPort port;
+  ASSERT_EQ(port.open(slave_name, 115200), Status::kOk);
+  const uint8_t cmd[] = {'V', 'V', '\n'};
+  ASSERT_TRUE(port.write(cmd, 3).ok());
+  uint8_t buf[8] = {};
+  ASSERT_EQ(read_all(device, buf, 3), 3u);
+  EXPECT_EQ(std::memcmp(buf, cmd, 3), 0);
+  const uint8_t answer[] = {0x00, 0xFF, 0x0A, 0x0D};  // raw mode: no byte is translated
+  ASSERT_TRUE(device.write(answer, 4).ok());
+  ASSERT_EQ(read_all(port, buf, 4), 4u);
+  EXPECT_EQ(std::memcmp(buf, answer, 4), 0);
+}
+
+TEST(SerialPort, UnsupportedBaudAndMissingDevice) {
+  SerialPort port;
+  EXPECT_EQ(port.open("/dev/null", 12345), Status::kUnsupported);
+  EXPECT_EQ(port.open("/nonexistent/tty", 115200), Status::kIoError);
+  EXPECT_FALSE(port.is_open());
+  uint8_t b = 0;
+  EXPECT_EQ(port.read(&b, 1).status(), Status::kClosed);
+}
+
+}  // namespace
+}  // namespace kestrel::platform

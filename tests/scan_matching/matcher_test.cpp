@@ -1,0 +1,149 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "kestrel/core/alloc_guard.hpp"
+#include "kestrel/scan_matching/scan_matcher.hpp"
+#include "synthetic.hpp"
+
+namespace kestrel::scan_matching {
+namespace {
+
+struct Rig {
+  std::unique_ptr<OnboardMapStorage> storage = std::make_unique<OnboardMapStorage>();
+  std::unique_ptr<ScanMatcher> m;
+  explicit Rig(const Params& p = Params{}) { m = std::make_unique<ScanMatcher>(p, storage->map_a, storage->map_b, true); }
+};
+
+TimeUs at(int i) { return TimeUs::from_us(25000LL * i); }
+
+// A hovering vehicle: the same view scan after scan never joins the map, and the pose holds.
+TEST(ScanMatcher, HoverKeepsTheMapAndDoesNotDrift) {
+  Rig r;
+  ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(0))).ok());
+  const uint32_t gen = r.m->local_map().generation();
+  const Pose2 first = r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(1))).measurement.pose;
+  EXPECT_LT(std::hypot(first.x, first.y), 0.0075f);  // within one cell of the truth
+  uint32_t keys = 0;
+  float drift = 0;
+  bool stamps = true;
+  auto scan = std::make_unique<LaserScan>(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(0)));
+  {
+    alloc_guard::Scope guard;
+    for (int i = 2; i < 40; ++i) {
+      scan->stamp = at(i);
+      const ScanMatch s = r.m->process(*scan);
+      keys |= s.measurement.flags & match_flag::kKeyScan;
+      drift = std::max(drift, std::hypot(s.measurement.pose.x - first.x, s.measurement.pose.y - first.y));
+      stamps = stamps && s.measurement.stamp == at(i);
+    }
+    EXPECT_EQ(guard.allocations(), 0u);
+  }
+  EXPECT_EQ(keys, 0u);
+  EXPECT_LT(drift, 1e-4f);  // the map holds still, so does the pose
+  EXPECT_TRUE(stamps);
+  EXPECT_EQ(r.m->local_map().generation(), gen);
+}
+
+// Flying 1 m/s through the room: the pose follows within a few millimetres, no allocation.
+TEST(ScanMatcher, TracksMotionWithoutAllocating) {
+  Params p;
+  p.resolution_m = 0.02f;
+  p.sigma_m = 0.03f;
+  Rig r(p);
+  ASSERT_TRUE(r.m->process(test::cast_scan({-1, -0.5f, 0}, test::room(), 1081, 4.712f, at(0))).ok());
+  float worst = 0;
+  std::vector<LaserScan> scans;
+  for (int i = 1; i <= 60; ++i) {
+    scans.push_back(test::cast_scan({-1 + 0.025f * i, -0.5f + 0.01f * i, 0.004f * i}, test::room(), 1081, 4.712f, at(i)));
+  }
+  {
+    alloc_guard::Scope guard;
+    for (int i = 1; i <= 60; ++i) {
+      const Pose2 truth{-1 + 0.025f * i, -0.5f + 0.01f * i, 0.004f * i};
+      const ScanMatch s = r.m->process(scans[static_cast<std::size_t>(i - 1)]);
+      worst = std::max(worst, std::hypot(s.measurement.pose.x - truth.x - 1, s.measurement.pose.y - truth.y - 0.5f));
+    }
+    EXPECT_EQ(guard.allocations(), 0u);
+  }
+  EXPECT_LT(worst, 0.02f);
+}
+
+// In a corridor the translation ellipse is long and thin along the corridor (flagged); in a
+// corner it is round.
+TEST(ScanMatcher, CovarianceAlongCorridorAndRoundInCorner) {
+  Params p;
+  p.min_window_m = 0.08f;
+  {
+    Rig r(p);
+    const std::vector<test::Wall> corridor{{-40, -1, 40, -1}, {-40, 1, 40, 1}};
+    ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, corridor, 1081, 4.712f, at(0))).ok());
+    const ScanMatch s = r.m->process(test::cast_scan({0.01f, 0, 0}, corridor, 1081, 4.712f, at(1)));
+    ASSERT_TRUE(s.ok());
+    const Eigen::Matrix3f& c = s.measurement.covariance;
+    EXPECT_GT(c(0, 0), 10 * c(1, 1));
+    EXPECT_NE(s.measurement.flags & match_flag::kDegenerate, 0u);
+    EXPECT_LT(std::fabs(std::sin(s.major_axis_rad)), 0.2f);  // along x
+  }
+  {
+    Rig r(p);
+    const std::vector<test::Wall> corner{{1, -3, 1, 1}, {1, 1, -3, 1}, {-1.5f, -1.5f, -1.5f, 0}, {-1.5f, -1.5f, 0, -1.5f}};
+    ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, corner, 1081, 4.712f, at(0))).ok());
+    const ScanMatch s = r.m->process(test::cast_scan({0.01f, 0, 0}, corner, 1081, 4.712f, at(1)));
+    ASSERT_TRUE(s.ok());
+    EXPECT_LT(s.axis_ratio, 4.0f);
+    EXPECT_EQ(s.measurement.flags & match_flag::kDegenerate, 0u);
+  }
+}
+
+// Bad scans are rejected with a flag, never crash, and do not disturb the next good scan.
+TEST(ScanMatcher, RejectsBadScans) {
+  Rig r;
+  LaserScan good = test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(10));
+  ASSERT_TRUE(r.m->process(good).ok());
+  LaserScan s = good;
+  s.stamp = at(11);
+  s.range_mm.fill(range_code::kNoReturn);
+  ScanMatch m = r.m->process(s);
+  EXPECT_NE(m.measurement.flags & match_flag::kTooFewPoints, 0u);
+  s.range_mm.fill(30000);  // all at maximum range
+  EXPECT_NE(r.m->process(s).measurement.flags & match_flag::kTooFewPoints, 0u);
+  s = good;
+  s.stamp = at(11);
+  s.beam_count = 1;
+  EXPECT_NE(r.m->process(s).measurement.flags & match_flag::kTooFewPoints, 0u);
+  s = good;
+  s.stamp = at(11);
+  s.angle_step_rad = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(r.m->process(s).measurement.flags & match_flag::kBadGeometry, 0u);
+  s = good;
+  s.beam_count = 0;
+  EXPECT_NE(r.m->process(s).measurement.flags & match_flag::kBadGeometry, 0u);
+  s = good;
+  s.stamp = at(5);  // backwards
+  m = r.m->process(s);
+  EXPECT_FALSE(m.ok());
+  EXPECT_NE(m.measurement.flags & match_flag::kTimeBackwards, 0u);
+  good.stamp = at(12);
+  m = r.m->process(good);
+  EXPECT_TRUE(m.ok());
+  EXPECT_LT(std::hypot(m.measurement.pose.x, m.measurement.pose.y), 0.004f);
+}
+
+// Asynchronous mode: until the background rebuild publishes a map the matcher says so; after
+// it, matching proceeds.
+TEST(ScanMatcher, AsynchronousRebuild) {
+  auto storage = std::make_unique<OnboardMapStorage>();
+  auto m = std::make_unique<ScanMatcher>(Params{}, storage->map_a, storage->map_b, false);
+  ASSERT_TRUE(m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(0))).ok());
+  const ScanMatch none = m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(1)));
+  EXPECT_NE(none.measurement.flags & match_flag::kNoMap, 0u);
+  EXPECT_EQ(m->local_map().rebuild(), Status::kOk);
+  EXPECT_EQ(m->local_map().rebuild(), Status::kNoData);
+  EXPECT_TRUE(m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(2))).ok());
+}
+
+}  // namespace
+}  // namespace kestrel::scan_matching

@@ -1,0 +1,39 @@
+#include <gtest/gtest.h>
+
+#include "kestrel/sim/sim_config.hpp"
+
+namespace kestrel::sim {
+namespace {
+
+TEST(ConfigFile, AppliesKnownKeysToEveryComponent) {
+  ConfigFile f;
+  ASSERT_EQ(f.parse("# tuning\nvehicle.k_pitch = 8.5\nimu.rate_hz=100  # slower\n\nlaser.dropout_probability = 0\n"
+                    "sim.command_delay_s = 0.2\n",
+                    "c.cfg"),
+            "");
+  SimConfig cfg;
+  EXPECT_EQ(cfg.apply(f), "");
+  EXPECT_DOUBLE_EQ(cfg.vehicle.k_pitch, 8.5);
+  EXPECT_DOUBLE_EQ(cfg.imu.rate_hz, 100);
+  EXPECT_DOUBLE_EQ(cfg.laser.dropout_probability, 0);
+  EXPECT_DOUBLE_EQ(cfg.command_delay_s, 0.2);
+}
+
+TEST(ConfigFile, ErrorsNameTheLine) {
+  ConfigFile f;
+  EXPECT_EQ(f.parse("a = 1\nb 2\n", "c.cfg"), "c.cfg:2: expected 'key = value'");
+  EXPECT_EQ(f.parse("a = x\n", "c.cfg"), "c.cfg:1: value of 'a' is not a finite number: 'x'");
+  EXPECT_EQ(f.parse("a = 1\na = 2\n", "c.cfg"), "c.cfg:2: 'a' is already set on line 1");
+  EXPECT_EQ(f.parse(" = 2\n", "c.cfg"), "c.cfg:1: missing key before '='");
+  ASSERT_EQ(f.parse("vehicle.k_pitch = 1\nvehicle.k_ptich = 2\n", "c.cfg"), "");
+  SimConfig cfg;
+  EXPECT_EQ(cfg.apply(f), "c.cfg:2: unknown key 'vehicle.k_ptich'");
+  ConfigFile bad;
+  ASSERT_EQ(bad.parse("imu.rate_hz = 5\n", "c.cfg"), "");
+  SimConfig cfg2;
+  EXPECT_EQ(cfg2.apply(bad), "imu.rate_hz must be in [10, 1000]");
+  EXPECT_NE(ConfigFile().load("/nonexistent.cfg").find("/nonexistent.cfg"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace kestrel::sim

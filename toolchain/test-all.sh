@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The README's test command: installs what is missing, then configures, builds and runs the
+# tests of all four presets (host, host-asan, and the two ARM targets under qemu-arm).
+# Usage (as root on Debian 12): bash toolchain/test-all.sh [preset ...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash toolchain/install-deps.sh
+
+presets=("$@")
+[ ${#presets[@]} -gt 0 ] || presets=(host host-asan overo verdex)
+jobs=$(nproc)
+
+declare -A result
+failed=0
+for p in "${presets[@]}"; do
+  echo "=== preset $p: configure and build"
+  start=$(date +%s)
+  cmake --preset "$p" > "build-$p.configure.log" 2>&1 || { cat "build-$p.configure.log"; exit 1; }
+  rm -f "build-$p.configure.log"
+  cmake --build --preset "$p" -j "$jobs"
+  echo "=== preset $p: test"
+  if ctest --preset "$p" -j "$jobs"; then
+    result[$p]=passed
+  else
+    result[$p]=FAILED
+    failed=$((failed + 1))
+  fi
+  echo "=== preset $p: ${result[$p]} in $(( $(date +%s) - start )) s"
+done
+
+echo
+echo "=== summary"
+passed=0
+for p in "${presets[@]}"; do
+  echo "  $p: ${result[$p]}"
+  [ "${result[$p]}" = passed ] && passed=$((passed + 1))
+done
+echo "presets: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
