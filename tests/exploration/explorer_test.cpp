@@ -117,8 +117,8 @@ TEST(BlendExplorer, YawRateLimitSlewsTheHeadingCommand) {
     EXPECT_LE(turn, 0.5f * 0.1f + 1e-5f);
     prev = out.heading_rad;
   }
-  EXPECT_NEAR(std::fabs(angle_diff(out.heading_rad, heading)),
-              std::min(0.5f, std::fabs(angle_diff(target, heading))), 1e-4);
+  EXPECT_NEAR(std::fabs(angle_diff(out.heading_rad, heading)), std::min(0.5f, std::fabs(angle_diff(target, heading))),
+              1e-4);
 }
 
 TEST(BlendExplorer, WaypointTimeLimitRestartsExploration) {
@@ -263,12 +263,24 @@ void never_allocates(Explorer* ex) {
   }
 }
 
-TEST(BlendExplorer, HoldsOnBadInput) { holds_on_bad_input(std::make_unique<BlendExplorer>().get()); }
-TEST(WallFollowExplorer, HoldsOnBadInput) { holds_on_bad_input(std::make_unique<WallFollowExplorer>().get()); }
-TEST(SrtExplorer, HoldsOnBadInput) { holds_on_bad_input(std::make_unique<SrtExplorer>().get()); }
-TEST(BlendExplorer, GuidanceStepNeverAllocates) { never_allocates(std::make_unique<BlendExplorer>().get()); }
-TEST(WallFollowExplorer, GuidanceStepNeverAllocates) { never_allocates(std::make_unique<WallFollowExplorer>().get()); }
-TEST(SrtExplorer, GuidanceStepNeverAllocates) { never_allocates(std::make_unique<SrtExplorer>().get()); }
+TEST(BlendExplorer, HoldsOnBadInput) {
+  holds_on_bad_input(std::make_unique<BlendExplorer>().get());
+}
+TEST(WallFollowExplorer, HoldsOnBadInput) {
+  holds_on_bad_input(std::make_unique<WallFollowExplorer>().get());
+}
+TEST(SrtExplorer, HoldsOnBadInput) {
+  holds_on_bad_input(std::make_unique<SrtExplorer>().get());
+}
+TEST(BlendExplorer, GuidanceStepNeverAllocates) {
+  never_allocates(std::make_unique<BlendExplorer>().get());
+}
+TEST(WallFollowExplorer, GuidanceStepNeverAllocates) {
+  never_allocates(std::make_unique<WallFollowExplorer>().get());
+}
+TEST(SrtExplorer, GuidanceStepNeverAllocates) {
+  never_allocates(std::make_unique<SrtExplorer>().get());
+}
 
 }  // namespace
 }  // namespace kestrel::exploration

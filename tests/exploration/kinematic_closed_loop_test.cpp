@@ -14,8 +14,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <string>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "kestrel/core/alloc_guard.hpp"
@@ -39,11 +39,11 @@ struct Building {
   static constexpr double kW = 14, kH = 10;
   Building() {
     world.add_box(0, 0, kW, kH);
-    world.add(5, 0, 5, 8.8);          // partition, gap y in [8.8, 10]
-    world.add(7.5, 2.5, 12.5, 2.5);   // inner room
+    world.add(5, 0, 5, 8.8);         // partition, gap y in [8.8, 10]
+    world.add(7.5, 2.5, 12.5, 2.5);  // inner room
     world.add(12.5, 2.5, 12.5, 7.5);
     world.add(12.5, 7.5, 7.5, 7.5);
-    world.add(7.5, 7.5, 7.5, 5.6);    // door y in [4.4, 5.6]
+    world.add(7.5, 7.5, 7.5, 5.6);  // door y in [4.4, 5.6]
     world.add(7.5, 4.4, 7.5, 2.5);
   }
   static bool in_east(double x, double) { return x > 5.3; }
@@ -54,12 +54,15 @@ struct Building {
 class CoverageGrid {
  public:
   static constexpr double kCell = 0.2;
-  CoverageGrid() : nx_(static_cast<int>(Building::kW / kCell)), ny_(static_cast<int>(Building::kH / kCell)),
-                   seen_(static_cast<std::size_t>(nx_ * ny_), false) {}
+  CoverageGrid()
+      : nx_(static_cast<int>(Building::kW / kCell)),
+        ny_(static_cast<int>(Building::kH / kCell)),
+        seen_(static_cast<std::size_t>(nx_ * ny_), false) {}
   void mark(const LaserScan& s, double x, double y, double heading, int stride) {
     for (int i = 0; i < s.beam_count; i += stride) {
       const uint16_t r = s.range_mm[i];
-      const double range = r >= kMinValidRangeMm ? r * 1e-3 : (r == range_code::kNoReturn ? s.max_range_mm * 1e-3 : 0.0);
+      const double range =
+          r >= kMinValidRangeMm ? r * 1e-3 : (r == range_code::kNoReturn ? s.max_range_mm * 1e-3 : 0.0);
       const double a = heading + s.angle_of(static_cast<std::size_t>(i));
       const double c = std::cos(a), sn = std::sin(a);
       for (double t = 0; t < range; t += 0.5 * kCell) {
@@ -154,8 +157,8 @@ FlightLog fly(Explorer& ex, double duration_s, uint32_t seed, int stride) {
     if (trace) {
       const SrtStarPlanner* pl = ex.planner();
       std::fprintf(trace, "%.1f %.3f %.3f %.3f %s %.3f %.3f %.3f %.3f %zu\n", t, x, y, heading,
-                   pl ? to_string(pl->mode()) : "-", ex.status().target.x, ex.status().target.y,
-                   out.velocity_mps.x(), out.velocity_mps.y(), pl ? pl->tree().nodes().size() : 0);
+                   pl ? to_string(pl->mode()) : "-", ex.status().target.x, ex.status().target.y, out.velocity_mps.x(),
+                   out.velocity_mps.y(), pl ? pl->tree().nodes().size() : 0);
     }
     const double clearance = b.world.clearance(x, y);
     log.min_clearance_m = std::min(log.min_clearance_m, clearance);
@@ -172,10 +175,11 @@ FlightLog fly(Explorer& ex, double duration_s, uint32_t seed, int stride) {
     log.restarts = pl->restarts();
     log.nodes = pl->tree().nodes().size();
   }
-  std::printf("[ kinematic ] %-10s seed %u: coverage %.3f (90%% at %.0f s), inner room %.3f, east at %.0f s, inner at %.0f s, "
-              "finished at %.0f s, distance %.0f m, min clearance %.2f m, collisions %d, restarts %u, nodes %zu\n",
-              to_string(ex.kind()), seed, log.coverage, log.t_cov90_s, log.inner_coverage, log.t_east_s, log.t_inner_s, log.t_finished_s,
-              log.distance_m, log.min_clearance_m, log.collisions, log.restarts, log.nodes);
+  std::printf(
+      "[ kinematic ] %-10s seed %u: coverage %.3f (90%% at %.0f s), inner room %.3f, east at %.0f s, inner at %.0f s, "
+      "finished at %.0f s, distance %.0f m, min clearance %.2f m, collisions %d, restarts %u, nodes %zu\n",
+      to_string(ex.kind()), seed, log.coverage, log.t_cov90_s, log.inner_coverage, log.t_east_s, log.t_inner_s,
+      log.t_finished_s, log.distance_m, log.min_clearance_m, log.collisions, log.restarts, log.nodes);
   return log;
 }
 

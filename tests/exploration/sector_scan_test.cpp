@@ -66,9 +66,9 @@ TEST_F(SectorTest, DoorwayGivesDiscontinuityFrontiersOnTheFarSide) {
   w.add(-1.0, -1.2, -1.0, 1.2);  // the small room the vehicle is in
   w.add(-1.0, -1.2, 1.0, -1.2);
   w.add(-1.0, 1.2, 1.0, 1.2);
-  w.add(1.0, -3.0, 1.0, -0.7);   // its front wall with the doorway, shared with the next room
+  w.add(1.0, -3.0, 1.0, -0.7);  // its front wall with the doorway, shared with the next room
   w.add(1.0, 0.7, 1.0, 3.0);
-  w.add(1.0, -3.0, 3.0, -3.0);   // the next room
+  w.add(1.0, -3.0, 3.0, -3.0);  // the next room
   w.add(1.0, 3.0, 3.0, 3.0);
   w.add(3.0, -3.0, 3.0, 3.0);
   ASSERT_EQ(sectors->build(w.scan(urg, 0, 0, 0), params), Status::kOk);

@@ -45,10 +45,10 @@ TEST_F(TreeFixture, SafeRegionIsTheUnionOfTheSectorsInTheWorldFrame) {
   const SrtNode& n = tree->nodes()[a];
   // Heading north: the opening points north, 3.5 m deep; elsewhere the walls are at 1 m.
   EXPECT_TRUE(n.contains({1.0f, 4.5f}, 0.2f));
-  EXPECT_FALSE(n.contains({1.0f, 5.4f}, 0.2f));   // beyond R_p - margin
-  EXPECT_TRUE(n.contains({1.6f, 2.0f}, 0.2f));    // east, inside the 1 m walls
-  EXPECT_FALSE(n.contains({2.0f, 2.0f}, 0.2f));   // east, past the wall - margin
-  EXPECT_FALSE(n.contains({1.0f, 1.5f}, 0.2f));   // behind: outside the 240 degree field of view
+  EXPECT_FALSE(n.contains({1.0f, 5.4f}, 0.2f));  // beyond R_p - margin
+  EXPECT_TRUE(n.contains({1.6f, 2.0f}, 0.2f));   // east, inside the 1 m walls
+  EXPECT_FALSE(n.contains({2.0f, 2.0f}, 0.2f));  // east, past the wall - margin
+  EXPECT_FALSE(n.contains({1.0f, 1.5f}, 0.2f));  // behind: outside the 240 degree field of view
   EXPECT_EQ(n.sector_of({1.0f, 1.5f}), -1);
   EXPECT_TRUE(tree->in_safe_region({1.0f, 4.0f}, 0.2f));
   EXPECT_FALSE(tree->in_safe_region({1.0f, 4.0f}, 0.2f, a));

@@ -74,10 +74,18 @@ void srt_arrival(benchmark::State& state, uint16_t beams, double fov_deg) {
   }
 }
 
-void BM_GuidanceStepUrg(benchmark::State& s) { guidance_step(s, 682, 240.0); }
-void BM_GuidanceStepUtm(benchmark::State& s) { guidance_step(s, 1081, 270.0); }
-void BM_SrtArrivalUrg(benchmark::State& s) { srt_arrival(s, 682, 240.0); }
-void BM_SrtArrivalUtm(benchmark::State& s) { srt_arrival(s, 1081, 270.0); }
+void BM_GuidanceStepUrg(benchmark::State& s) {
+  guidance_step(s, 682, 240.0);
+}
+void BM_GuidanceStepUtm(benchmark::State& s) {
+  guidance_step(s, 1081, 270.0);
+}
+void BM_SrtArrivalUrg(benchmark::State& s) {
+  srt_arrival(s, 682, 240.0);
+}
+void BM_SrtArrivalUtm(benchmark::State& s) {
+  srt_arrival(s, 1081, 270.0);
+}
 BENCHMARK(BM_GuidanceStepUrg)->Name("exploration/guidance_step/urg04lx_682");
 BENCHMARK(BM_GuidanceStepUtm)->Name("exploration/guidance_step/utm30lx_1081");
 BENCHMARK(BM_SrtArrivalUrg)->Name("exploration/srt_arrival/urg04lx_682");

@@ -9,9 +9,12 @@ namespace kestrel::exploration {
 
 const char* to_string(FrontierKind k) {
   switch (k) {
-    case FrontierKind::kMid: return "mid";
-    case FrontierKind::kLeft: return "left";
-    case FrontierKind::kRight: return "right";
+    case FrontierKind::kMid:
+      return "mid";
+    case FrontierKind::kLeft:
+      return "left";
+    case FrontierKind::kRight:
+      return "right";
   }
   return "unknown";
 }
@@ -23,7 +26,8 @@ void SectorScan::erode(const LaserScan& scan, const SrtParams& params, uint16_t 
   const float ray_width = width_rad_ / kRaysPerSector;
   std::array<float, kMaxSectors * kRaysPerSector> clear{};
   for (int k = 0; k < rays; ++k)
-    clear[static_cast<std::size_t>(k)] = std::min(cap, static_cast<float>(radius_mm_[static_cast<std::size_t>(k / kRaysPerSector)]) * 1e-3f);
+    clear[static_cast<std::size_t>(k)] =
+        std::min(cap, static_cast<float>(radius_mm_[static_cast<std::size_t>(k / kRaysPerSector)]) * 1e-3f);
   const std::size_t beams = scan.beam_count;
   const bool ccw = scan.angle_step_rad > 0.0f;
   const float step = std::fabs(scan.angle_step_rad);
@@ -49,18 +53,19 @@ void SectorScan::erode(const LaserScan& scan, const SrtParams& params, uint16_t 
     }
   }
   for (int q = 0; q < rays; ++q)
-    clear_mm_[static_cast<std::size_t>(q)] = static_cast<uint16_t>(std::lround(std::max(clear[static_cast<std::size_t>(q)], 0.0f) * 1000.0f * 0.999f));
+    clear_mm_[static_cast<std::size_t>(q)] =
+        static_cast<uint16_t>(std::lround(std::max(clear[static_cast<std::size_t>(q)], 0.0f) * 1000.0f * 0.999f));
 }
 
 Status SectorScan::build(const LaserScan& scan, const SrtParams& params) {
   count_ = 0;
   frontiers_.clear();
   const std::size_t beams = scan.beam_count;
-  if (beams == 0 || beams > kMaxBeams || !std::isfinite(scan.first_angle_rad) ||
-      !std::isfinite(scan.angle_step_rad) || scan.angle_step_rad == 0.0f)
+  if (beams == 0 || beams > kMaxBeams || !std::isfinite(scan.first_angle_rad) || !std::isfinite(scan.angle_step_rad) ||
+      scan.angle_step_rad == 0.0f)
     return Status::kInvalidArgument;
-  if (params.sector_count < 2 || params.sector_count > kMaxSectors ||
-      !(params.perception_range_m > 0.0f) || !(params.discontinuity_m > 0.0f))
+  if (params.sector_count < 2 || params.sector_count > kMaxSectors || !(params.perception_range_m > 0.0f) ||
+      !(params.discontinuity_m > 0.0f))
     return Status::kInvalidArgument;
 
   const uint16_t sectors = static_cast<uint16_t>(std::min<std::size_t>(params.sector_count, beams));
@@ -108,8 +113,7 @@ Status SectorScan::build(const LaserScan& scan, const SrtParams& params) {
   // Frontiers. Mid-points of obstacle-free sectors, at R_p.
   const float rp_m = static_cast<float>(rp_mm) * 1e-3f;
   for (uint16_t s = 0; s < sectors; ++s) {
-    if (free_[s])
-      (void)frontiers_.push_back({static_cast<uint8_t>(s), FrontierKind::kMid, mid_angle(s), rp_m});
+    if (free_[s]) (void)frontiers_.push_back({static_cast<uint8_t>(s), FrontierKind::kMid, mid_angle(s), rp_m});
   }
   // Discontinuities between neighbours: the point of the farther-reaching sector on the
   // shared edge, at that sector's radius (where the safe region borders the unknown beyond the
@@ -120,11 +124,11 @@ Status SectorScan::build(const LaserScan& scan, const SrtParams& params) {
     const int32_t right = radius_mm_[s], left = radius_mm_[s + 1];
     const float edge = start_rad_ + static_cast<float>(s + 1) * width_rad_;
     if (left - right > jump_mm) {  // sector s+1 reaches farther: its right (clockwise) point
-      (void)frontiers_.push_back({static_cast<uint8_t>(s + 1), FrontierKind::kRight, edge,
-                                  static_cast<float>(left) * 1e-3f});
+      (void)frontiers_.push_back(
+          {static_cast<uint8_t>(s + 1), FrontierKind::kRight, edge, static_cast<float>(left) * 1e-3f});
     } else if (right - left > jump_mm) {  // sector s reaches farther: its left point
-      (void)frontiers_.push_back({static_cast<uint8_t>(s), FrontierKind::kLeft, edge,
-                                  static_cast<float>(right) * 1e-3f});
+      (void)frontiers_.push_back(
+          {static_cast<uint8_t>(s), FrontierKind::kLeft, edge, static_cast<float>(right) * 1e-3f});
     }
   }
   return Status::kOk;

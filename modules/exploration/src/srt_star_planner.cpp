@@ -8,10 +8,14 @@ namespace kestrel::exploration {
 
 const char* to_string(PlannerMode m) {
   switch (m) {
-    case PlannerMode::kIdle: return "idle";
-    case PlannerMode::kForward: return "forward";
-    case PlannerMode::kBacktrack: return "backtrack";
-    case PlannerMode::kFinished: return "finished";
+    case PlannerMode::kIdle:
+      return "idle";
+    case PlannerMode::kForward:
+      return "forward";
+    case PlannerMode::kBacktrack:
+      return "backtrack";
+    case PlannerMode::kFinished:
+      return "finished";
   }
   return "unknown";
 }

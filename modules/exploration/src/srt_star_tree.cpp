@@ -40,8 +40,7 @@ bool SrtStarTree::in_safe_region(Point2 p, float margin_m, uint16_t except) cons
   return false;
 }
 
-Status SrtStarTree::add_node(const Pose2& pose, const SectorScan& sectors, uint16_t parent,
-                             uint16_t& id) {
+Status SrtStarTree::add_node(const Pose2& pose, const SectorScan& sectors, uint16_t parent, uint16_t& id) {
   id = kNoNode;
   if (!pose.finite() || sectors.count() == 0) return Status::kInvalidArgument;
   if (parent != kNoNode && parent >= nodes_.size()) return Status::kInvalidArgument;

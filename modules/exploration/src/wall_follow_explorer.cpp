@@ -6,8 +6,8 @@
 
 namespace kestrel::exploration {
 
-Status WallFollowExplorer::plan(const Pose2& pose, const LaserScan& scan, TimeUs /*now*/,
-                                GuidanceSetpoint& out, float& heading_target) {
+Status WallFollowExplorer::plan(const Pose2& pose, const LaserScan& scan, TimeUs /*now*/, GuidanceSetpoint& out,
+                                float& heading_target) {
   Eigen::Vector2f v = wall_following_velocity(scan, pose.theta);
   const float cruise = params_.guidance.cruise_speed_mps;
   const bool wall = status_.field.nearest_beam != 0xFFFFu;

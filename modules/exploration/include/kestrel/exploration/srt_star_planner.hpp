@@ -59,7 +59,7 @@ class SrtStarPlanner {
   bool finished() const { return mode_ == PlannerMode::kFinished; }
   bool has_waypoint() const { return mode_ != PlannerMode::kIdle; }
   Point2 waypoint() const { return waypoint_; }
-  uint16_t current_node() const { return current_; }  // node the vehicle is leaving or at
+  uint16_t current_node() const { return current_; }     // node the vehicle is leaving or at
   uint16_t target_node() const { return target_node_; }  // node of a backtrack, else kNoNode
   bool aligning() const { return aligning_; }
   const SrtStarTree& tree() const { return tree_; }
