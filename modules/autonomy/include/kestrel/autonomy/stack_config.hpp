@@ -12,8 +12,18 @@
 
 namespace kestrel::autonomy {
 
+// The scan matcher as the vehicle runs it: 1 cm cells over the 1024-cell on-board map give a
+// 10 m window, wide enough that a hallway's end walls and a room's far side constrain the
+// match (with the paper's 7.5 mm the window is 7.7 m).
+inline scan_matching::Params vehicle_matcher_params() {
+  scan_matching::Params p;
+  p.resolution_m = 0.01f;
+  p.sigma_m = 0.02f;
+  return p;
+}
+
 struct StackConfig {
-  scan_matching::Params matcher;
+  scan_matching::Params matcher = vehicle_matcher_params();
   estimation::EkfParams ekf;
   control::ControllerParams controller = control::default_controller_params();
   exploration::Params explorer;

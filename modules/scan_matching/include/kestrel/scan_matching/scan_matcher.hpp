@@ -81,7 +81,7 @@ template <int Dim, std::size_t MaxSegments>
 struct ScanMatcherStorage {
   LikelihoodMapStorage<Dim, MaxSegments> map_a, map_b;
 };
-inline constexpr int kOnboardMapDim = 576;
+inline constexpr int kOnboardMapDim = 1024;
 inline constexpr std::size_t kOnboardMaxSegments = 4 * kMaxBeams;
 using OnboardMapStorage = ScanMatcherStorage<kOnboardMapDim, kOnboardMaxSegments>;
 
