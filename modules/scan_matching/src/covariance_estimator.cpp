@@ -26,9 +26,11 @@ CovarianceEstimate CovarianceEstimator::estimate(const uint16_t* slice, int half
   const uint16_t thr = std::max<uint16_t>(scratch_[p95], 1);
   // Second moments of the binary image {score >= 95th percentile}.
   double m = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+  bool touches_edge = false;
   for (int y = 0; y < w; ++y) {
     for (int x = 0; x < w; ++x) {
       if (slice[y * w + x] < thr) continue;
+      touches_edge = touches_edge || x == 0 || y == 0 || x == w - 1 || y == w - 1;
       const double fx = x - half, fy = y - half;
       m += 1; sx += fx; sy += fy; sxx += fx * fx; syy += fy * fy; sxy += fx * fy;
     }
@@ -41,13 +43,25 @@ CovarianceEstimate CovarianceEstimator::estimate(const uint16_t* slice, int half
     cyy += syy / m - my * my;
     cxy = sxy / m - mx * my;
   }
-  e.translation_cells << static_cast<float>(cxx), static_cast<float>(cxy), static_cast<float>(cxy), static_cast<float>(cyy);
   const double tr = cxx + cyy, det = cxx * cyy - cxy * cxy;
   const double disc = std::sqrt(std::max(0.0, tr * tr / 4 - det));
-  const double l1 = tr / 2 + disc, l2 = std::max(1e-9, tr / 2 - disc);
-  e.axis_ratio = static_cast<float>(l1 / l2);
+  double l1 = tr / 2 + disc;
+  const double l2 = std::max(1e-9, tr / 2 - disc);
   e.major_axis_rad = static_cast<float>(0.5 * std::atan2(2 * cxy, cxx - cyy));
-  e.degenerate = e.axis_ratio > degenerate_ratio;
+  e.degenerate = l1 / l2 > degenerate_ratio;
+  // A likely region cut off by the window is wider than what we can see: in a corridor the
+  // score is flat along it, the 95th-percentile cells run from edge to edge, and their moments
+  // measure the window, not the uncertainty. Then the major axis gets a variance that makes
+  // the match say nothing along it (the EKF carries that direction on the IMU) instead of
+  // silently pinning the pose to the window's middle.
+  if (touches_edge && e.degenerate) l1 = std::max(l1, kUnboundedVarianceCells2);
+  e.truncated = touches_edge;
+  e.axis_ratio = static_cast<float>(l1 / l2);
+  const double c = std::cos(e.major_axis_rad), sn = std::sin(e.major_axis_rad);
+  cxx = l1 * c * c + l2 * sn * sn;
+  cyy = l1 * sn * sn + l2 * c * c;
+  cxy = (l1 - l2) * c * sn;
+  e.translation_cells << static_cast<float>(cxx), static_cast<float>(cxy), static_cast<float>(cxy), static_cast<float>(cyy);
 
   const auto at = [&](int x, int y) { return static_cast<float>(slice[y * w + x]); };
   if (half >= 1) {

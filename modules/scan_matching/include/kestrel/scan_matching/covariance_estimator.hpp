@@ -21,8 +21,13 @@ struct CovarianceEstimate {
   float major_axis_rad = 0;    // orientation of the ellipse's long axis, map frame
   float axis_ratio = 1.0f;     // major / minor eigenvalue
   bool degenerate = false;
+  bool truncated = false;      // the likely region reached the slice's edge
   float dx = 0, dy = 0, dk = 0;  // sub-cell / sub-step refinement of the grid optimum
 };
+
+// Variance given to the unobservable axis of a degenerate match (a corridor): 100 cells of
+// standard deviation, e.g. 1 m with 1 cm cells, so the filter ignores the match along it.
+inline constexpr double kUnboundedVarianceCells2 = 1e4;
 
 class CovarianceEstimator {
  public:
