@@ -28,7 +28,7 @@ LaserParams LaserParams::urg04lx() {
   p.far_from_m = 1.0;
   p.sigma_rel = 0.01;
   p.dropout_probability = 0.005;
-  p.deflected_beams = 0;
+  p.deflected_beams = 8;  // the same mirror as on the UTM-30LX (paper 000 Figure 1): there is no other altimeter
   p.mount_z_m = 0.05;
   return p;
 }
