@@ -11,14 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "carmen_scans.hpp"
+#include "kestrel/logs/open_log.hpp"
+#include "kestrel/metrics/absolute_trajectory_error.hpp"
+#include "kestrel/metrics/relative_pose_error.hpp"
 #include "kestrel/output/canvas.hpp"
 #include "kestrel/output/json_writer.hpp"
 #include "kestrel/output/pgm_map.hpp"
 #include "kestrel/output/png_writer.hpp"
 #include "kestrel/output/tum_writer.hpp"
 #include "kestrel/scan_matching/scan_matcher.hpp"
-#include "trajectory_metrics.hpp"
 
 namespace {
 using namespace kestrel;
@@ -78,11 +79,34 @@ int main(int argc, char** argv) {
   }
   if (log.empty() || out_dir.empty() || (format != "carmen" && format != "mines")) return usage();
 
-  std::vector<replay::LogScan> scans;
-  std::string error;
-  if (!replay::read_log(log, format, scans, error)) {
-    std::fprintf(stderr, "kestrel-replay: %s\n", error.c_str());
+  logs::LogFormat fmt = logs::LogFormat::kCarmen;
+  if (!ok(logs::parse_log_format(format, fmt))) return usage();
+  logs::OpenLogOptions opts;
+  opts.time_order = logs::TimeOrder::kAccept;  // the matcher rejects a backwards scan itself
+  logs::LogError lerr;
+  std::unique_ptr<logs::LogSource> src = logs::open_log(log.c_str(), fmt, opts, lerr);
+  if (!src) {
+    std::fprintf(stderr, "kestrel-replay: %s: %s\n", log.c_str(), lerr.reason);
     return 2;
+  }
+  struct Scan {
+    LaserScan scan;
+    double stamp_s;
+    bool has_reference;
+    Pose2d reference;
+  };
+  std::vector<Scan> scans;
+  logs::LogRecord rec;
+  for (;;) {
+    const Status st = src->next(rec);
+    if (st == Status::kNoData) break;
+    if (!ok(st)) {
+      std::fprintf(stderr, "kestrel-replay: %s:%u: %s\n", log.c_str(), static_cast<unsigned>(src->error().line),
+                   src->error().reason);
+      return 2;
+    }
+    if (rec.kind != logs::LogRecord::Kind::kLaser) continue;
+    scans.push_back({rec.scan, rec.timestamp_s, rec.has_pose, rec.pose});
   }
   if (scans.empty()) {
     std::fprintf(stderr, "kestrel-replay: %s: no laser scans\n", log.c_str());
@@ -109,7 +133,7 @@ int main(int argc, char** argv) {
   std::vector<Point2d> points;
   int rejected = 0, lost = 0, keys = 0, degenerate = 0;
   double t_sum = 0, t_max = 0;
-  for (const replay::LogScan& s : scans) {
+  for (const Scan& s : scans) {
     const auto t0 = std::chrono::steady_clock::now();
     const ScanMatch r = matcher.process(s.scan);
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
@@ -136,8 +160,20 @@ int main(int argc, char** argv) {
   }
   (void)tum.close();
 
-  const bool has_ref = ref.size() == est.size() && !ref.empty();
-  const replay::TrajectoryMetrics m = has_ref ? replay::compute_metrics(est, ref) : replay::TrajectoryMetrics{};
+  const bool has_ref = ref.size() == est.size() && ref.size() >= 2;
+  metrics::RpeResult rpe;
+  metrics::AteResult ate;
+  int jumps = 0;
+  if (has_ref) {
+    const auto r = metrics::relative_pose_error(est, ref);
+    const auto a = metrics::absolute_trajectory_error(est, ref);
+    if (r.ok()) rpe = r.value();
+    if (a.ok()) ate = a.value();
+    for (std::size_t i = 1; i < est.size(); ++i) {
+      const Pose2d e = metrics::relative_error(est[i - 1], est[i], ref[i - 1], ref[i]);
+      jumps += std::hypot(e.x, e.y) > 0.2 || std::fabs(e.theta) > 5 * M_PI / 180;
+    }
+  }
   const int n = static_cast<int>(scans.size());
   output::JsonWriter j;
   j.begin_object();
@@ -145,11 +181,11 @@ int main(int argc, char** argv) {
   j.integer("scans", n).integer("rejected", rejected).integer("lost", lost).integer("key_scans", keys);
   j.integer("degenerate", degenerate);
   if (has_ref) {
-    j.number("rpe_trans_m", m.rpe_trans_m).number("rpe_trans_std_m", m.rpe_trans_std_m);
-    j.number("rpe_rot_deg", m.rpe_rot_deg).number("rpe_rot_std_deg", m.rpe_rot_std_deg);
-    j.number("rpe_trans_max_m", m.rpe_trans_max_m).number("rpe_rot_max_deg", m.rpe_rot_max_deg);
-    j.integer("rpe_pairs", m.pairs).integer("jumps", m.jumps);
-    j.number("ate_rmse_m", m.ate_rmse_m);
+    j.number("rpe_trans_m", rpe.trans_m.mean).number("rpe_trans_std_m", rpe.trans_m.std);
+    j.number("rpe_rot_deg", rpe.rot_deg.mean).number("rpe_rot_std_deg", rpe.rot_deg.std);
+    j.number("rpe_trans_max_m", rpe.trans_m.max).number("rpe_rot_max_deg", rpe.rot_deg.max);
+    j.integer("rpe_pairs", static_cast<int64_t>(est.size() - 1)).integer("jumps", jumps);
+    j.number("ate_rmse_m", ate.trans_m.rmse);
   }
   j.number("tasks.scan_match.us_mean", t_sum / n).number("tasks.scan_match.us_max", t_max);
   j.end_object();
@@ -183,16 +219,16 @@ int main(int argc, char** argv) {
         c.set(c.wx(g.origin_x_m + x * g.resolution_m), c.wy(g.origin_y_m + y * g.resolution_m), output::colors::kBlack);
   for (std::size_t i = 1; i < est.size(); ++i) {
     if (has_ref) {
-      const Point2d a = m.alignment.transform({ref[i - 1].x, ref[i - 1].y}), b = m.alignment.transform({ref[i].x, ref[i].y});
-      c.world_line(a.x, a.y, b.x, b.y, output::colors::kGreen, 2);
+      c.world_line(ref[i - 1].x, ref[i - 1].y, ref[i].x, ref[i].y, output::colors::kGreen, 2);
     }
+    // Both start at the log's first pose, so they share a frame without alignment.
     c.world_line(est[i - 1].x, est[i - 1].y, est[i].x, est[i].y, output::colors::kRed, 1);
   }
   c.text(8, 8, "scan matcher (red) vs reference (green)", output::colors::kBlack, 2);
   if (!ok(output::write_png(out_dir + "/render.png", c))) return 1;
 
   std::printf("scans %d rejected %d lost %d key %d", n, rejected, lost, keys);
-  if (has_ref) std::printf(" rpe %.4f m %.3f deg (max %.3f m %.2f deg, jumps %d) ate %.3f m", m.rpe_trans_m, m.rpe_rot_deg, m.rpe_trans_max_m, m.rpe_rot_max_deg, m.jumps, m.ate_rmse_m);
+  if (has_ref) std::printf(" rpe %.4f m %.3f deg (max %.3f m %.2f deg, jumps %d) ate %.3f m", rpe.trans_m.mean, rpe.rot_deg.mean, rpe.trans_m.max, rpe.rot_deg.max, jumps, ate.trans_m.rmse);
   std::printf(" time mean %.0f us max %.0f us\n", t_sum / n, t_max);
   return 0;
 }

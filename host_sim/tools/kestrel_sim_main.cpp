@@ -124,7 +124,8 @@ int main(int argc, char** argv) {
   std::snprintf(sub, sizeof(sub), "LASER %s  SEED %llu  %.1f S  FLOWN %.1f M  COVERAGE %.0f%%  COLLISIONS %zu",
                 opt.laser.c_str(), static_cast<unsigned long long>(opt.seed), run.end.seconds(), rec.distance_m(),
                 rec.coverage() * 100, sim.contacts().size());
-  const output::Canvas canvas = tools::render_run(sim.world(), rec, sim.contacts(), {title, sub});
+  if (mission->write_outputs(opt.out_dir) != Status::kOk) rc = 1;
+  const output::Canvas canvas = tools::render_run(sim.world(), rec, sim.contacts(), {title, sub}, mission.get());
   if (output::write_png(dir + "render.png", canvas) != Status::kOk) rc = 1;
   if (rc != 0) std::fprintf(stderr, "kestrel-sim: could not write every output into '%s'\n", opt.out_dir.c_str());
   std::fprintf(stderr, "kestrel-sim: %s after %.2f s simulated (%.1fx real time); outputs in %s\n",

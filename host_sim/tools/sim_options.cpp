@@ -8,7 +8,8 @@ namespace kestrel::sim::tools {
 std::string sim_usage() {
   std::string u =
       "usage: kestrel-sim [--world NAME|FILE] [--laser utm30lx|urg04lx] [--duration S] [--seed N]\n"
-      "                   --out DIR [--mission NAME] [--script FILE] [--mission-arg KEY=VALUE]\n"
+      "                   --out DIR [--mission NAME] [--script FILE] [--waypoints FILE]\n"
+      "                   [--explorer blend|wallfollow|srt] [--mission-arg KEY=VALUE]\n"
       "                   [--config FILE] [--record]\n"
       "  --world     a compiled-in world (iarc-arena, gt-building, lobby, hallway, cluttered-lab)\n"
       "              or a world file (default iarc-arena)\n"
@@ -46,7 +47,8 @@ ParseOutcome parse_sim_options(int argc, char** argv) {
     } else if (a == "--record") {
       o.record = true;
     } else if (a == "--world" || a == "--laser" || a == "--duration" || a == "--seed" || a == "--out" ||
-               a == "--mission" || a == "--config" || a == "--script" || a == "--mission-arg") {
+               a == "--mission" || a == "--config" || a == "--script" || a == "--mission-arg" || a == "--waypoints" ||
+               a == "--explorer") {
       if (!value(v)) return fail("option " + a + " needs a value");
       if (a == "--world") {
         o.world = v;
@@ -78,6 +80,10 @@ ParseOutcome parse_sim_options(int argc, char** argv) {
         o.config_path = v;
       } else if (a == "--script") {
         o.mission_options.values["script"] = v;
+      } else if (a == "--waypoints") {
+        o.mission_options.values["waypoints"] = v;
+      } else if (a == "--explorer") {
+        o.mission_options.values["explorer"] = v;
       } else {
         const auto eq = v.find('=');
         if (eq == std::string::npos || eq == 0) return fail("--mission-arg: expected KEY=VALUE, got '" + v + "'");

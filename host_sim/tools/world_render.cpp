@@ -82,7 +82,7 @@ void legend_swatch_line(Canvas& c, int x, int y, Rgb col, int thick, bool dash) 
 }  // namespace
 
 Canvas render_run(const World& world, const FlightRecorder& rec, const std::vector<Contact>& contacts,
-                  const RenderInfo& info) {
+                  const RenderInfo& info, const Mission* mission) {
   const Bounds2 b = world.bounds();
   const double wm = std::max(1.0, b.max.x() - b.min.x()), hm = std::max(1.0, b.max.y() - b.min.y());
   const double ppm = std::clamp(std::min(1200.0 / wm, 800.0 / hm), 8.0, 120.0);
@@ -149,6 +149,7 @@ Canvas render_run(const World& world, const FlightRecorder& rec, const std::vect
   const auto& path = rec.path();
   for (std::size_t i = 1; i < path.size(); ++i)
     c.world_line(path[i - 1].x, path[i - 1].y, path[i].x, path[i].y, Rgb{30, 80, 220}, 3);
+  if (mission != nullptr) mission->draw(c);
   // Start and end markers.
   c.world_circle(world.start.x, world.start.y, 9, Rgb{20, 150, 50}, true);
   c.world_line(world.start.x, world.start.y, world.start.x + 0.9 * std::cos(world.start.yaw_rad),
@@ -200,6 +201,9 @@ Canvas render_run(const World& world, const FlightRecorder& rec, const std::vect
   item("GLASS (NO RETURN)", [&](int x, int y) { legend_swatch_line(c, x, y, Rgb{0, 190, 220}, 4, false); });
   item("RAILING (SOME RETURN)", [&](int x, int y) { legend_swatch_line(c, x, y, Rgb{150, 50, 190}, 4, true); });
   item("TRUE PATH", [&](int x, int y) { legend_swatch_line(c, x, y, Rgb{30, 80, 220}, 3, false); });
+  if (mission != nullptr)
+    for (const Mission::LegendRow& row : mission->legend())
+      item(row.label, [&](int x, int y) { legend_swatch_line(c, x, y, row.color, 3, false); });
   item("START", [&](int x, int y) { c.circle(x + 15, y + 7, 7, Rgb{20, 150, 50}, true); });
   item("END", [&](int x, int y) { c.circle(x + 15, y + 7, 7, Rgb{200, 30, 30}, false); });
   item("LAST LASER SCAN", [&](int x, int y) {

@@ -4,6 +4,7 @@
 // the reachable free area (white) and the part the laser saw (pale blue), room names, the
 // true path with start and end markers, the last scan, any collision, a scale bar, axes and
 // a legend.
+#include "kestrel/sim/mission.hpp"
 #include <string>
 
 #include "kestrel/output/canvas.hpp"
@@ -17,7 +18,8 @@ struct RenderInfo {
   std::string subtitle;  // second line
 };
 
+// `mission` (optional) adds its own layer and legend rows.
 output::Canvas render_run(const World& world, const FlightRecorder& rec, const std::vector<Contact>& contacts,
-                          const RenderInfo& info);
+                          const RenderInfo& info, const Mission* mission = nullptr);
 
 }  // namespace kestrel::sim::tools

@@ -35,16 +35,18 @@ Eigen::Vector3f world_bias(const test::SyntheticFlight& fl, float psi) {
 // THEN the mean NEES over the flights lies inside the two-sided 99 % chi-square bounds
 // at (nearly) every check time: chi2(3N) for each axis, chi2(2N) for the heading.
 TEST(NavFilter, NeesInsideChiSquareBoundsOnSyntheticFlights) {
-  constexpr int kRuns = 20;
-  // chi2 quantiles 0.005 and 0.995 for 60 and 40 degrees of freedom.
-  const double lo3 = 35.53 / kRuns, hi3 = 91.95 / kRuns;
-  const double lo2 = 20.71 / kRuns, hi2 = 66.77 / kRuns;
-  constexpr int kChecks = 16;
-  std::array<std::array<double, 4>, kChecks> sum{};
+  // Fewer, shorter flights under qemu on the ARM targets (soft float on the Verdex).
+  const bool host = KESTREL_TARGET_IS_HOST;
+  const int kRuns = host ? 20 : 10;
+  // chi2 quantiles 0.005 and 0.995 for 3N and 2N degrees of freedom.
+  const double lo3 = (host ? 35.53 : 13.79) / kRuns, hi3 = (host ? 91.95 : 53.67) / kRuns;
+  const double lo2 = (host ? 20.71 : 7.43) / kRuns, hi2 = (host ? 66.77 : 40.00) / kRuns;
+  const int kChecks = host ? 16 : 10;
+  std::array<std::array<double, 4>, 16> sum{};
   auto filter = std::make_unique<NavFilter>();
   for (int r = 0; r < kRuns; ++r) {
     SyntheticConfig c;
-    c.duration_s = 17.0;
+    c.duration_s = kChecks + 1.0;
     c.seed = 100 + static_cast<uint32_t>(r);
     const auto fl = make_flight(c);
     filter->reset();
@@ -77,14 +79,14 @@ TEST(NavFilter, NeesInsideChiSquareBoundsOnSyntheticFlights) {
       }
     }
   }
-  // 64 checks at 99 %: allow none to be far out; the loop above already reports each one.
+  // Up to 64 checks at 99 %: none may be out; the loop above reports each one.
   EXPECT_EQ(outside, 0);
 }
 
 // GIVEN a 60 s flight with constant biases, THEN the estimated biases converge to them.
 TEST(NavFilter, AccelerometerAndGyroBiasesConverge) {
   SyntheticConfig c;
-  c.duration_s = 60.0;
+  c.duration_s = KESTREL_TARGET_IS_HOST ? 60.0 : 40.0;
   c.seed = 7;
   c.accel_bias_sigma = 0.2f;
   c.draw_biases = false;
@@ -93,7 +95,7 @@ TEST(NavFilter, AccelerometerAndGyroBiasesConverge) {
   const auto fl = make_flight(c);
   auto filter = std::make_unique<NavFilter>(matched_params(c));
   StreamPlayer player(fl, Duration::from_ms(25));
-  player.play_until(*filter, TimeUs::from_s(60.0));
+  player.play_until(*filter, TimeUs::from_s(c.duration_s));
   const std::size_t i = player.truth_index(filter->state().stamp);
   const Eigen::Vector3f b = world_bias(fl, fl.heading[i]);
   for (int ax = 0; ax < 3; ++ax) {
@@ -107,8 +109,8 @@ TEST(NavFilter, AccelerometerAndGyroBiasesConverge) {
 }
 
 // GIVEN a quadrotor-like flight (thrust on body z, acceleration from roll and pitch reported in
-// FlightStatus with AttitudeSetpoint conventions), THEN the velocity is as good as level flight.
-TEST(NavFilter, UsesRollAndPitchWithAttitudeSetpointConventions) {
+// FlightStatus as right-handed rotations), THEN the velocity is as good as level flight.
+TEST(NavFilter, UsesAutopilotRollAndPitch) {
   SyntheticConfig c;
   c.duration_s = 20.0;
   c.tilt = true;

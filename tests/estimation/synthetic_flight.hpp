@@ -5,7 +5,8 @@
 // noise, scan-matcher poses and altimeter heights with white noise of the stated covariance,
 // and ground truth at every IMU sample. With `tilt` the vehicle flies like a quadrotor: the
 // specific force is thrust along body z only, and the horizontal acceleration comes from roll
-// and pitch, which are reported in FlightStatus (AttitudeSetpoint conventions).
+// and pitch, which are reported in FlightStatus (right-handed about body x and y, as the
+// simulator's autopilot reports them).
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -116,9 +117,10 @@ inline SyntheticFlight make_flight(const SyntheticConfig& c) {
     FlightStatus st;
     st.stamp = TimeUs::from_us(t);
     if (c.tilt) {
-      // Thrust along body z: R = Ry(pitch) Rx(-roll) maps (0, 0, T) onto h.
+      // Thrust along body z: R = Ry(pitch) Rx(roll) maps (0, 0, T) onto h (right-handed
+      // roll: the left side up tilts the thrust towards -y).
       const double T = h.norm();
-      const double roll = std::asin(h.y() / T);
+      const double roll = -std::asin(h.y() / T);
       const double pitch = std::atan2(h.x(), h.z());
       st.roll_rad = static_cast<float>(roll);
       st.pitch_rad = static_cast<float>(pitch);

@@ -66,9 +66,9 @@ TEST_F(SectorTest, DoorwayGivesDiscontinuityFrontiersOnTheFarSide) {
   w.add(-1.0, -1.2, -1.0, 1.2);  // the small room the vehicle is in
   w.add(-1.0, -1.2, 1.0, -1.2);
   w.add(-1.0, 1.2, 1.0, 1.2);
-  w.add(1.0, -3.0, 1.0, -0.7);   // its front wall with the doorway, shared with the next room
+  w.add(1.0, -3.0, 1.0, -0.7);  // its front wall with the doorway, shared with the next room
   w.add(1.0, 0.7, 1.0, 3.0);
-  w.add(1.0, -3.0, 3.0, -3.0);   // the next room
+  w.add(1.0, -3.0, 3.0, -3.0);  // the next room
   w.add(1.0, 3.0, 3.0, 3.0);
   w.add(3.0, -3.0, 3.0, 3.0);
   ASSERT_EQ(sectors->build(w.scan(urg, 0, 0, 0), params), Status::kOk);
@@ -129,6 +129,43 @@ TEST_F(SectorTest, ClockwiseScanGivesTheSameSectorsAsCounterClockwise) {
   EXPECT_NEAR(a.start_rad(), b.start_rad(), 1e-5);
   for (uint16_t s = 0; s < a.count(); ++s) EXPECT_EQ(a.radius_mm(s), b.radius_mm(s));
   EXPECT_EQ(a.frontiers().size(), b.frontiers().size());
+}
+
+TEST_F(SectorTest, RayClearDistanceKeepsTheClearanceFromEveryReturn) {
+  // A thin post 1.5 m ahead, slightly left of the nose, and a wall 2 m to the right.
+  SegmentWorld w;
+  w.add(1.5, 0.05, 1.5, 0.08);
+  w.add(-1, -2, 5, -2);
+  const LaserScan scan = w.scan(urg, 0, 0, 0);
+  ASSERT_EQ(sectors->build(scan, params), Status::kOk);
+  const double rho = params.clearance_m, cap = params.perception_range_m - rho;
+  // Distance from return i to the segment from the origin to d along angle a.
+  auto gap = [&](int i, double a, double d) {
+    const double r = scan.range_mm[i] * 1e-3, b = scan.angle_of(i);
+    const double along = std::clamp(r * std::cos(b - a), 0.0, d);
+    return std::hypot(r * std::cos(b) - along * std::cos(a), r * std::sin(b) - along * std::sin(a));
+  };
+  int shortened = 0;
+  for (uint16_t s = 0; s < sectors->count(); ++s) {
+    for (uint16_t j = 0; j < SectorScan::kRaysPerSector; ++j) {
+      const double a = sectors->ray_angle(s, j), d = sectors->clear_mm(s, j) * 1e-3;
+      EXPECT_LE(d, sectors->radius_mm(s) * 1e-3 + 1e-9);
+      EXPECT_LE(d, cap + 1e-9);
+      double nearest = 1e9, nearest_beyond = 1e9;
+      for (int i = 0; i < scan.beam_count; ++i) {
+        if (!LaserScan::is_return(scan.range_mm[i])) continue;
+        nearest = std::min(nearest, gap(i, a, d));
+        nearest_beyond = std::min(nearest_beyond, gap(i, a, d + 0.05));
+      }
+      EXPECT_GE(nearest, rho - 2e-3) << "sector " << s << " ray " << j;  // the disc fits all the way
+      // ... and the distance is tight unless a radius or the cap bounds it.
+      if (d + 0.05 < std::min(cap, sectors->radius_mm(s) * 1e-3)) {
+        EXPECT_LT(nearest_beyond, rho) << "sector " << s << " ray " << j;
+        shortened += sectors->obstacle_free(s) ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GE(shortened, 2);  // rays of obstacle-free sectors beside the post were shortened
 }
 
 TEST_F(SectorTest, RejectsEmptyScansAndBadParameters) {

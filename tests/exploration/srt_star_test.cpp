@@ -45,10 +45,10 @@ TEST_F(TreeFixture, SafeRegionIsTheUnionOfTheSectorsInTheWorldFrame) {
   const SrtNode& n = tree->nodes()[a];
   // Heading north: the opening points north, 3.5 m deep; elsewhere the walls are at 1 m.
   EXPECT_TRUE(n.contains({1.0f, 4.5f}, 0.2f));
-  EXPECT_FALSE(n.contains({1.0f, 5.4f}, 0.2f));   // beyond R_p - margin
-  EXPECT_TRUE(n.contains({1.6f, 2.0f}, 0.2f));    // east, inside the 1 m walls
-  EXPECT_FALSE(n.contains({2.0f, 2.0f}, 0.2f));   // east, past the wall - margin
-  EXPECT_FALSE(n.contains({1.0f, 1.5f}, 0.2f));   // behind: outside the 240 degree field of view
+  EXPECT_FALSE(n.contains({1.0f, 5.4f}, 0.2f));  // beyond R_p - margin
+  EXPECT_TRUE(n.contains({1.6f, 2.0f}, 0.2f));   // east, inside the 1 m walls
+  EXPECT_FALSE(n.contains({2.0f, 2.0f}, 0.2f));  // east, past the wall - margin
+  EXPECT_FALSE(n.contains({1.0f, 1.5f}, 0.2f));  // behind: outside the 240 degree field of view
   EXPECT_EQ(n.sector_of({1.0f, 1.5f}), -1);
   EXPECT_TRUE(tree->in_safe_region({1.0f, 4.0f}, 0.2f));
   EXPECT_FALSE(tree->in_safe_region({1.0f, 4.0f}, 0.2f, a));
@@ -162,12 +162,12 @@ TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
   auto planner = std::make_unique<SrtStarPlanner>();
   ASSERT_EQ(planner->configure({}, {}), Status::kOk);
   bool fresh = false;
-  // Root: an opening ahead.
-  ASSERT_EQ(planner->update({0, 0, 0}, opening_scan(10), TimeUs{}, fresh), Status::kOk);
+  // Root: a 1.15 m wide opening ahead.
+  ASSERT_EQ(planner->update({0, 0, 0}, opening_scan(35), TimeUs{}, fresh), Status::kOk);
   ASSERT_EQ(planner->mode(), PlannerMode::kForward);
   const Point2 wp = planner->waypoint();
-  EXPECT_GT(wp.x, 1.0f);
-  EXPECT_LT(std::fabs(wp.y), 0.5f);
+  EXPECT_GE(std::hypot(wp.x, wp.y), 2.0f * GuidanceParams{}.arrival_distance_m - 1e-4f);
+  EXPECT_LT(std::fabs(std::atan2(wp.y, wp.x)), 35 * M_PI / 180);
   // Arrive in an enclosed spot: walls at 1 m everywhere, no frontier.
   const Pose2 there{wp.x, wp.y, 0};
   ASSERT_EQ(planner->update(there, uniform_scan(kUrg, 1000), TimeUs{1000000}, fresh), Status::kOk);
@@ -181,7 +181,7 @@ TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
   ASSERT_EQ(planner->update({0.5f, 0, 0}, uniform_scan(kUrg, 1000), TimeUs{2000000}, fresh), Status::kOk);
   EXPECT_FALSE(fresh);
   // Back on the root, which still owns its (once tried) frontier: forward again, no new node.
-  ASSERT_EQ(planner->update({0.05f, 0, 0}, opening_scan(10), TimeUs{3000000}, fresh), Status::kOk);
+  ASSERT_EQ(planner->update({0.05f, 0, 0}, opening_scan(35), TimeUs{3000000}, fresh), Status::kOk);
   EXPECT_TRUE(fresh);
   EXPECT_EQ(planner->current_node(), 0);
   EXPECT_EQ(planner->tree().nodes().size(), 2u);
@@ -281,7 +281,21 @@ TEST(SrtStarPlanner, WaypointsStayInsideTheSectorOfAFrontier) {
     const int s = root.sector_of(wp);
     ASSERT_GE(s, 0);
     const float r = std::hypot(wp.x, wp.y);
-    EXPECT_LE(r, root.radius_mm[s] * 1e-3f - p.wall_clearance_m + 1e-4f);
+    int ray = -1;
+    for (uint16_t j = 0; j < SectorScan::kRaysPerSector; ++j)
+      if (std::fabs(angle_diff(root.ray_angle(static_cast<uint16_t>(s), j), std::atan2(wp.y, wp.x))) < 1e-4f) ray = j;
+    ASSERT_GE(ray, 0) << "waypoints lie on a ray of the sector";
+    EXPECT_LE(r, root.clear_mm[s * SectorScan::kRaysPerSector + ray] * 1e-3f + 1e-4f);
+    // The straight path from the node keeps the clearance from every return of the scan.
+    const LaserScan scan = opening_scan(20);
+    for (int i = 0; i < scan.beam_count; ++i) {
+      if (!LaserScan::is_return(scan.range_mm[i])) continue;
+      const float rx = scan.range_mm[i] * 1e-3f * std::cos(scan.angle_of(i));
+      const float ry = scan.range_mm[i] * 1e-3f * std::sin(scan.angle_of(i));
+      // Distance from the return to the segment origin -> waypoint.
+      const float u = std::clamp((rx * wp.x + ry * wp.y) / (r * r), 0.0f, 1.0f);
+      EXPECT_GE(std::hypot(rx - u * wp.x, ry - u * wp.y), p.clearance_m - 1e-3f) << "beam " << i;
+    }
     EXPECT_GE(r, 2.0f * GuidanceParams{}.arrival_distance_m - 1e-4f);
     EXPECT_LT(std::fabs(std::atan2(wp.y, wp.x)), 20.0 * M_PI / 180.0);  // in the opening
   }

@@ -47,8 +47,8 @@ class SegmentWorld {
       const double den = dx * ey - dy * ex;
       if (std::fabs(den) < 1e-12) continue;
       const double wx = s.x0 - x, wy = s.y0 - y;
-      const double t = (wx * ey - wy * ex) / den;   // along the ray
-      const double u = (wx * dy - wy * dx) / den;   // along the segment
+      const double t = (wx * ey - wy * ex) / den;  // along the ray
+      const double u = (wx * dy - wy * dx) / den;  // along the segment
       if (t > 1e-9 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
     }
     return best;
@@ -77,8 +77,8 @@ class SegmentWorld {
     for (uint16_t i = 0; i < m.beams; ++i) {
       const double r = cast(x, y, heading + m.first_angle() + m.step() * i);
       const double mm = r * 1000.0;
-      s.range_mm[i] = mm > m.max_range_mm ? range_code::kNoReturn
-                                          : static_cast<uint16_t>(std::max(20.0, std::round(mm)));
+      s.range_mm[i] =
+          mm > m.max_range_mm ? range_code::kNoReturn : static_cast<uint16_t>(std::max(20.0, std::round(mm)));
     }
     return s;
   }

@@ -63,7 +63,7 @@ TEST_F(FieldTest, WallsAllAtTargetRangeGiveZero) {
 TEST_F(FieldTest, SingleBeamCloserRepelsFartherAttractsAtTheGainOfEquation2) {
   WallFollowParams p;
   p.normalisation = FieldNormalisation::kPaperSum;  // the plain sum: one beam = one v_ri
-  const int beam = 400;  // left of the nose
+  const int beam = 400;                             // left of the nose
   LaserScan s = uniform_scan(urg, range_code::kNoReturn);
   const double a = s.first_angle_rad + s.angle_step_rad * beam;
   for (double r_m : {0.7, 1.0, 2.5}) {
@@ -102,9 +102,9 @@ TEST_F(FieldTest, SafeGainDominatesInsideSafeRadius) {
   EXPECT_LT(inside.body_mps.x() * std::cos(a) + inside.body_mps.y() * std::sin(a), 0.0);  // repels
   // One beam inside r_safe outweighs many far beams pulling the other way.
   LaserScan mixed = uniform_scan(urg, range_code::kNoReturn);
-  for (int i = 300; i < 382; ++i) mixed.range_mm[i] = 300;  // obstacle ahead at 0.3 m
-  for (int i = 0; i < 100; ++i) mixed.range_mm[i] = 3900;   // far wall behind-right
-  for (int i = 582; i < 682; ++i) mixed.range_mm[i] = 3900; // far wall behind-left
+  for (int i = 300; i < 382; ++i) mixed.range_mm[i] = 300;   // obstacle ahead at 0.3 m
+  for (int i = 0; i < 100; ++i) mixed.range_mm[i] = 3900;    // far wall behind-right
+  for (int i = 582; i < 682; ++i) mixed.range_mm[i] = 3900;  // far wall behind-left
   EXPECT_LT(run(mixed).body_mps.x(), -0.5f);
 }
 
@@ -113,7 +113,10 @@ TEST_F(FieldTest, StraightWallAheadHasItsEquilibriumWhereTheIntegralVanishes) {
   // K_wf * integral over |theta| < acos(h/R) of (h - r_t cos theta) = 2 K_wf (h alpha - r_t sin alpha).
   const WallFollowParams p;
   const double R = p.max_range_m, rt = p.target_range_m;
-  auto integral = [&](double h) { const double al = std::acos(h / R); return h * al - rt * std::sin(al); };
+  auto integral = [&](double h) {
+    const double al = std::acos(h / R);
+    return h * al - rt * std::sin(al);
+  };
   double lo = 0.55, hi = rt;
   for (int i = 0; i < 60; ++i) ((integral(0.5 * (lo + hi)) < 0) ? lo : hi) = 0.5 * (lo + hi);
   const double h_star = 0.5 * (lo + hi);
@@ -136,8 +139,8 @@ TEST_F(FieldTest, StraightWallAheadHasItsEquilibriumWhereTheIntegralVanishes) {
 TEST_F(FieldTest, FixedPointMatchesDoubleReference) {
   std::mt19937 rng(7);
   for (LaserModel m : {LaserModel::urg04lx(), LaserModel::utm30lx()}) {
-    for (auto norm : {FieldNormalisation::kPerRadian, FieldNormalisation::kPaperSum,
-                      FieldNormalisation::kPerInRangeBeam}) {
+    for (auto norm :
+         {FieldNormalisation::kPerRadian, FieldNormalisation::kPaperSum, FieldNormalisation::kPerInRangeBeam}) {
       WallFollowParams p;
       p.normalisation = norm;
       p.max_range_m = m.max_range_mm > 4000 ? 10.0f : 4.0f;

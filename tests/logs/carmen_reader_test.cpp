@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 
 #include "kestrel/core/alloc_guard.hpp"
@@ -183,6 +184,9 @@ TEST(CarmenReader, BadLinesGiveStatusAndLineNumber) {
       {"imu nan", "IMU 0 0 nan 1 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n", Status::kNotFinite, 1},
       {"robotlaser remission count", "ROBOTLASER1 0 -1 2 0.5 30 0.01 0 2 1 2 3 0.1 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
        Status::kMalformed, 1},
+      {"robotlaser huge remission count",
+       "ROBOTLASER1 0 -1 2 0.5 30 0.01 0 2 1 2 9223372036854775807 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
+       Status::kMalformed, 1},
       {"robotlaser max range", "ROBOTLASER1 0 -1 2 0.5 0 0.01 0 2 1 2 0 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
        Status::kMalformed, 1},
       {"param value", "PARAM kestrel_imu_period_us fast h 0\n", Status::kMalformed, 1},
@@ -203,6 +207,16 @@ TEST(CarmenReader, BadLinesGiveStatusAndLineNumber) {
     LogRecord rec;
     EXPECT_EQ(reader.next(rec), c.status) << c.name;
   }
+}
+
+TEST(CarmenReader, EmptyFileIsAnEmptyLog) {
+  TempLogFile file("empty.log");
+  file.write("");
+  CarmenReader reader;
+  ASSERT_EQ(reader.open(file.c_str()), Status::kOk);
+  int records = 0;
+  EXPECT_EQ(read_all(reader, records), Status::kNoData);
+  EXPECT_EQ(records, 0);
 }
 
 TEST(CarmenReader, TimeOrderPolicies) {
@@ -297,6 +311,52 @@ TEST(CarmenReader, MissingFileAndCrLf) {
   ASSERT_EQ(reader.open(file.c_str()), Status::kOk);
   ASSERT_EQ(reader.next(rec), Status::kOk) << reader.error().reason;
   EXPECT_EQ(rec.scan.range_mm[2], 1002);
+}
+
+// Mutated logs (bytes replaced, deleted, inserted): the reader always ends with kNoData or an
+// error, never crashes (run under host-asan too), and never hands out a scan past kMaxBeams.
+TEST(CarmenReader, RandomlyMutatedLogsNeverCrash) {
+  const std::string base =
+      flaser(181, 1.0) + "ODOM 0 0 0 0 0 0 1.1 h 1.1\n" +
+      "ROBOTLASER1 0 -2.35 4.71 0.00436 30.0 0.01 0 3 1.234 30.0 0.001 1 0.5 1.0 2.0 0.25 0.9 1.9 0.2 0.3 "
+      "0.1 0.5 0.5 0 2.0 kestrel 2.0\n" +
+      "IMU 0.1 -0.2 9.81 1 0 0 0 0 0 0 0.01 0.02 -0.03 2.5 kestrel 2.5\n" + flaser(361, 3.0);
+  std::mt19937 rng(7);
+  const char alphabet[] = "0123456789 .-+eEnaifFLASERIMU\n\t#x\r";
+  TempLogFile file("mutated.log");
+  int errors = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::string text = base;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t pos = rng() % text.size();
+      const char c = alphabet[rng() % (sizeof alphabet - 1)];
+      switch (rng() % 3) {
+        case 0: text[pos] = c; break;
+        case 1: text.erase(pos, 1); break;
+        default: text.insert(pos, 1, c); break;
+      }
+    }
+    file.write(text);
+    CarmenReader reader;
+    ASSERT_EQ(reader.open(file.c_str()), Status::kOk);
+    LogRecord rec;
+    Status s;
+    int records = 0;
+    while (ok(s = reader.next(rec)) && records < 100) {
+      ++records;
+      if (rec.kind == LogRecord::Kind::kLaser) {
+        ASSERT_LE(rec.scan.beam_count, kMaxBeams);
+      }
+    }
+    ASSERT_LT(records, 100);
+    if (s != Status::kNoData) {
+      ++errors;
+      EXPECT_GT(reader.error().line, 0u);
+    }
+  }
+  // Most mutations must be caught; the rest changed a number into another valid number.
+  EXPECT_GT(errors, 100);
 }
 
 TEST(CarmenReader, NextDoesNotAllocate) {

@@ -23,6 +23,8 @@ class TempLogFile {
   ~TempLogFile() {
     std::error_code ec;
     std::filesystem::remove(path_, ec);
+    // Removes the per-process folder once its last file is gone (remove() spares a non-empty one).
+    std::filesystem::remove(std::filesystem::path(path_).parent_path(), ec);
   }
   TempLogFile(const TempLogFile&) = delete;
   TempLogFile& operator=(const TempLogFile&) = delete;

@@ -74,9 +74,8 @@ TEST(AbsoluteTrajectoryError, ClosedFormBeatsBruteForce) {
     }
     const auto r = absolute_trajectory_error(est, ref);
     ASSERT_TRUE(r.ok());
-    double best = 1e9;
-    for (int k = 0; k < 36000; ++k) {
-      const double th = -kPi<double> + 2 * kPi<double> * k / 36000;
+    // RMSE at angle th with the best translation for that angle (the centroid difference).
+    auto rmse_at = [&](double th) {
       const double c = std::cos(th), s = std::sin(th);
       double mx = 0, my = 0;
       for (std::size_t i = 0; i < e.size(); ++i) {
@@ -90,8 +89,21 @@ TEST(AbsoluteTrajectoryError, ClosedFormBeatsBruteForce) {
         const double dx = c * e[i].x - s * e[i].y + mx - q[i].x, dy = s * e[i].x + c * e[i].y + my - q[i].y;
         sq += dx * dx + dy * dy;
       }
-      best = std::min(best, std::sqrt(sq / static_cast<double>(e.size())));
+      return std::sqrt(sq / static_cast<double>(e.size()));
+    };
+    // A coarse grid of 0.5 degree over the circle, then a fine one around its best cell.
+    const double coarse = 2 * kPi<double> / 720;
+    double best = 1e9, best_th = 0;
+    for (int k = 0; k < 720; ++k) {
+      const double th = -kPi<double> + coarse * k;
+      const double v = rmse_at(th);
+      if (v < best) {
+        best = v;
+        best_th = th;
+      }
     }
+    const double centre = best_th;
+    for (int k = -1000; k <= 1000; ++k) best = std::min(best, rmse_at(centre + coarse * k / 1000.0));
     EXPECT_LE(r.value().trans_m.rmse, best + 1e-12);
     EXPECT_NEAR(r.value().trans_m.rmse, best, 1e-5);
     const auto a = align_se2(e, q);

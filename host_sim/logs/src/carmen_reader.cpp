@@ -282,10 +282,10 @@ Status CarmenReader::parse_robotlaser1(FieldCursor& f, LogRecord& out) {
   s = read_ranges(f, static_cast<std::size_t>(n), max_range, out);
   if (ok(s)) s = read_count(f, "remission count", m, error_);
   if (!ok(s)) return s;
-  if (static_cast<long long>(f.remaining()) != m + 14) {
+  // At least 14 fields are left (checked above), so this cannot wrap, whatever m says.
+  if (f.remaining() - 14 != static_cast<unsigned long long>(m)) {
     std::snprintf(error_.reason, sizeof error_.reason,
-                  "%lld remissions need %lld fields after the remission count, found %zu", m, m + 14,
-                  f.remaining());
+                  "remission count %lld, but %zu remission fields follow", m, f.remaining() - 14);
     return Status::kMalformed;
   }
   for (long long i = 0; i < m && ok(s); ++i) {

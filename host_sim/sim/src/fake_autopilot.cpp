@@ -40,7 +40,7 @@ void FakeAutopilot::update_status(const VehicleState& s) {
   status_.stamp = s.stamp;
   status_.armed = armed_;
   status_.battery_v = 11.1f;
-  status_.roll_rad = static_cast<float>(s.roll_rad);
+  status_.roll_rad = static_cast<float>(s.roll_rad);  // right-handed, as FlightStatus says
   status_.pitch_rad = static_cast<float>(s.pitch_rad);
   status_.yaw_rad = static_cast<float>(s.yaw_rad);
   status_fresh_ = true;

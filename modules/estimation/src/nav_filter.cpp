@@ -83,11 +83,11 @@ void NavFilter::propagate(const Filters& from, Filters& to, const Input& in, flo
   const float psi_mid = from.hd.x(0) + 0.5f * w * dt;
   heading_predict(to.hd, in.gyro_z, dt, params_.gyro_noise, params_.gyro_bias_walk);
 
-  // Body to world: Rz(psi) Ry(pitch) Rx(-roll), with pitch and roll as in AttitudeSetpoint.
+  // Body to world: Rz(psi) Ry(pitch) Rx(roll), right-handed rotations of FlightStatus.
   Eigen::Vector3f f = in.accel;
   if (in.roll != 0.0f) {
     const float cr = std::cos(in.roll), sr = std::sin(in.roll);
-    f = Eigen::Vector3f(f.x(), cr * f.y() + sr * f.z(), -sr * f.y() + cr * f.z());
+    f = Eigen::Vector3f(f.x(), cr * f.y() - sr * f.z(), sr * f.y() + cr * f.z());
   }
   if (in.pitch != 0.0f) {
     const float cp = std::cos(in.pitch), sp = std::sin(in.pitch);

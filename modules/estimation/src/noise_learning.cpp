@@ -39,7 +39,7 @@ void replay(NavFilter& filter, const RecordedRun& run, Accumulator& acc) {
       }
     }
     const NavState s = filter.state();
-    if (!s.valid) continue;
+    if (!s.valid || truth.stamp < run.truth.front().stamp + run.score_after) continue;
     const float e = (s.velocity_mps - truth.velocity_mps).norm();
     if (!std::isfinite(e)) {
       acc.sum_sq = std::numeric_limits<double>::infinity();

@@ -41,7 +41,9 @@ LaserScan room_scan(uint16_t beams, double fov_deg, double x, double y, double h
 void guidance_step(benchmark::State& state, uint16_t beams, double fov_deg) {
   auto explorer = std::make_unique<BlendExplorer>();
   LaserScan scan = room_scan(beams, fov_deg, 2.0, 1.5, 0.3, 6.0, 4.0);
-  if (explorer->configure(Params{}, BeamGeometry::of(scan)) != Status::kOk) {
+  Params params;
+  params.guidance.waypoint_time_limit_s = 1e6f;  // steady state: no restart inside the loop
+  if (explorer->configure(params, BeamGeometry::of(scan)) != Status::kOk) {
     state.SkipWithError("configure failed");
     return;
   }
@@ -72,10 +74,18 @@ void srt_arrival(benchmark::State& state, uint16_t beams, double fov_deg) {
   }
 }
 
-void BM_GuidanceStepUrg(benchmark::State& s) { guidance_step(s, 682, 240.0); }
-void BM_GuidanceStepUtm(benchmark::State& s) { guidance_step(s, 1081, 270.0); }
-void BM_SrtArrivalUrg(benchmark::State& s) { srt_arrival(s, 682, 240.0); }
-void BM_SrtArrivalUtm(benchmark::State& s) { srt_arrival(s, 1081, 270.0); }
+void BM_GuidanceStepUrg(benchmark::State& s) {
+  guidance_step(s, 682, 240.0);
+}
+void BM_GuidanceStepUtm(benchmark::State& s) {
+  guidance_step(s, 1081, 270.0);
+}
+void BM_SrtArrivalUrg(benchmark::State& s) {
+  srt_arrival(s, 682, 240.0);
+}
+void BM_SrtArrivalUtm(benchmark::State& s) {
+  srt_arrival(s, 1081, 270.0);
+}
 BENCHMARK(BM_GuidanceStepUrg)->Name("exploration/guidance_step/urg04lx_682");
 BENCHMARK(BM_GuidanceStepUtm)->Name("exploration/guidance_step/utm30lx_1081");
 BENCHMARK(BM_SrtArrivalUrg)->Name("exploration/srt_arrival/urg04lx_682");

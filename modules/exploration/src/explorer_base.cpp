@@ -7,9 +7,12 @@ namespace kestrel::exploration {
 
 const char* to_string(ExplorerKind k) {
   switch (k) {
-    case ExplorerKind::kBlend: return "blend";
-    case ExplorerKind::kWallFollow: return "wallfollow";
-    case ExplorerKind::kSrt: return "srt";
+    case ExplorerKind::kBlend:
+      return "blend";
+    case ExplorerKind::kWallFollow:
+      return "wallfollow";
+    case ExplorerKind::kSrt:
+      return "srt";
   }
   return "unknown";
 }

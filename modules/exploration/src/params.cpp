@@ -6,27 +6,27 @@
 
 namespace kestrel::exploration {
 namespace {
-bool positive(float v) { return std::isfinite(v) && v > 0.0f; }
-bool non_negative(float v) { return std::isfinite(v) && v >= 0.0f; }
+bool positive(float v) {
+  return std::isfinite(v) && v > 0.0f;
+}
+bool non_negative(float v) {
+  return std::isfinite(v) && v >= 0.0f;
+}
 }  // namespace
 
 Status Params::validate() const {
   const bool wall_ok = positive(wall.target_range_m) && positive(wall.safe_range_m) &&
                        wall.safe_range_m < wall.target_range_m && non_negative(wall.gain_wf) &&
-                       non_negative(wall.gain_safe) && positive(wall.max_range_m) &&
-                       wall.max_range_m < 65.0f;
-  const bool srt_ok = srt.sector_count >= 2 && srt.sector_count <= kMaxSectors &&
-                      positive(srt.perception_range_m) && srt.perception_range_m < 65.0f &&
-                      positive(srt.discontinuity_m) && positive(srt.step_min_fraction) &&
-                      srt.step_min_fraction <= srt.step_max_fraction &&
-                      srt.step_max_fraction <= 1.0f && non_negative(srt.wall_clearance_m) &&
+                       non_negative(wall.gain_safe) && positive(wall.max_range_m) && wall.max_range_m < 65.0f;
+  const bool srt_ok = srt.sector_count >= 2 && srt.sector_count <= kMaxSectors && positive(srt.perception_range_m) &&
+                      srt.perception_range_m < 65.0f && positive(srt.discontinuity_m) &&
+                      positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
+                      srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
                       non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1;
   const bool guidance_ok = positive(guidance.arrival_distance_m) && non_negative(guidance.gain_fr) &&
-                           positive(guidance.speed_limit_mps) &&
-                           positive(guidance.yaw_rate_limit_radps) &&
-                           positive(guidance.waypoint_time_limit_s) &&
-                           std::isfinite(guidance.altitude_m) &&
-                           non_negative(guidance.cruise_speed_mps);
+                           positive(guidance.speed_limit_mps) && positive(guidance.yaw_rate_limit_radps) &&
+                           positive(guidance.waypoint_time_limit_s) && std::isfinite(guidance.altitude_m) &&
+                           non_negative(guidance.cruise_speed_mps) && non_negative(guidance.wall_hold_gain);
   return wall_ok && srt_ok && guidance_ok ? Status::kOk : Status::kInvalidArgument;
 }
 

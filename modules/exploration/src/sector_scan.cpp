@@ -3,26 +3,69 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kestrel/core/angle.hpp"
+
 namespace kestrel::exploration {
 
 const char* to_string(FrontierKind k) {
   switch (k) {
-    case FrontierKind::kMid: return "mid";
-    case FrontierKind::kLeft: return "left";
-    case FrontierKind::kRight: return "right";
+    case FrontierKind::kMid:
+      return "mid";
+    case FrontierKind::kLeft:
+      return "left";
+    case FrontierKind::kRight:
+      return "right";
   }
   return "unknown";
+}
+
+void SectorScan::erode(const LaserScan& scan, const SrtParams& params, uint16_t rp_mm) {
+  const float rho = std::max(params.clearance_m, 0.0f);
+  const float cap = std::max(static_cast<float>(rp_mm) * 1e-3f - rho, 0.0f);
+  const int rays = static_cast<int>(count_) * kRaysPerSector;
+  const float ray_width = width_rad_ / kRaysPerSector;
+  std::array<float, kMaxSectors * kRaysPerSector> clear{};
+  for (int k = 0; k < rays; ++k)
+    clear[static_cast<std::size_t>(k)] =
+        std::min(cap, static_cast<float>(radius_mm_[static_cast<std::size_t>(k / kRaysPerSector)]) * 1e-3f);
+  const std::size_t beams = scan.beam_count;
+  const bool ccw = scan.angle_step_rad > 0.0f;
+  const float step = std::fabs(scan.angle_step_rad);
+  for (std::size_t i = 0; i < beams; ++i) {
+    const uint16_t r_mm = scan.range_mm[i];
+    const float r = static_cast<float>(r_mm) * 1e-3f;
+    // Only returns nearer than the cap plus rho can shorten a ray.
+    if (r_mm < kMinValidRangeMm || r >= cap + rho) continue;
+    const std::size_t k = ccw ? i : beams - 1 - i;
+    const float rel = (static_cast<float>(k) + 0.5f) * step;  // beam angle from start_rad_
+    const float half = r <= rho ? 0.5f * kPi<float> : std::asin(rho / r);
+    const int k0 = std::max(0, static_cast<int>(std::floor((rel - half) / ray_width - 0.5f)));
+    const int k1 = std::min(rays - 1, static_cast<int>(std::ceil((rel + half) / ray_width - 0.5f)));
+    for (int q = k0; q <= k1; ++q) {
+      const float phi = (static_cast<float>(q) + 0.5f) * ray_width - rel;
+      const float along = r * std::cos(phi), side = r * std::sin(phi);
+      if (along <= 0.0f && r > rho) continue;
+      const float h2 = rho * rho - side * side;
+      if (h2 <= 0.0f) continue;
+      const float block = std::max(along - std::sqrt(h2), 0.0f);
+      float& c = clear[static_cast<std::size_t>(q)];
+      c = std::min(c, block);
+    }
+  }
+  for (int q = 0; q < rays; ++q)
+    clear_mm_[static_cast<std::size_t>(q)] =
+        static_cast<uint16_t>(std::lround(std::max(clear[static_cast<std::size_t>(q)], 0.0f) * 1000.0f * 0.999f));
 }
 
 Status SectorScan::build(const LaserScan& scan, const SrtParams& params) {
   count_ = 0;
   frontiers_.clear();
   const std::size_t beams = scan.beam_count;
-  if (beams == 0 || beams > kMaxBeams || !std::isfinite(scan.first_angle_rad) ||
-      !std::isfinite(scan.angle_step_rad) || scan.angle_step_rad == 0.0f)
+  if (beams == 0 || beams > kMaxBeams || !std::isfinite(scan.first_angle_rad) || !std::isfinite(scan.angle_step_rad) ||
+      scan.angle_step_rad == 0.0f)
     return Status::kInvalidArgument;
-  if (params.sector_count < 2 || params.sector_count > kMaxSectors ||
-      !(params.perception_range_m > 0.0f) || !(params.discontinuity_m > 0.0f))
+  if (params.sector_count < 2 || params.sector_count > kMaxSectors || !(params.perception_range_m > 0.0f) ||
+      !(params.discontinuity_m > 0.0f))
     return Status::kInvalidArgument;
 
   const uint16_t sectors = static_cast<uint16_t>(std::min<std::size_t>(params.sector_count, beams));
@@ -65,12 +108,12 @@ Status SectorScan::build(const LaserScan& scan, const SrtParams& params) {
   for (uint16_t s = 0; s < sectors; ++s)
     if (!seen[s]) radius_mm_[s] = 0;
   count_ = sectors;
+  erode(scan, params, rp_mm);
 
   // Frontiers. Mid-points of obstacle-free sectors, at R_p.
   const float rp_m = static_cast<float>(rp_mm) * 1e-3f;
   for (uint16_t s = 0; s < sectors; ++s) {
-    if (free_[s])
-      (void)frontiers_.push_back({static_cast<uint8_t>(s), FrontierKind::kMid, mid_angle(s), rp_m});
+    if (free_[s]) (void)frontiers_.push_back({static_cast<uint8_t>(s), FrontierKind::kMid, mid_angle(s), rp_m});
   }
   // Discontinuities between neighbours: the point of the farther-reaching sector on the
   // shared edge, at that sector's radius (where the safe region borders the unknown beyond the
@@ -81,11 +124,11 @@ Status SectorScan::build(const LaserScan& scan, const SrtParams& params) {
     const int32_t right = radius_mm_[s], left = radius_mm_[s + 1];
     const float edge = start_rad_ + static_cast<float>(s + 1) * width_rad_;
     if (left - right > jump_mm) {  // sector s+1 reaches farther: its right (clockwise) point
-      (void)frontiers_.push_back({static_cast<uint8_t>(s + 1), FrontierKind::kRight, edge,
-                                  static_cast<float>(left) * 1e-3f});
+      (void)frontiers_.push_back(
+          {static_cast<uint8_t>(s + 1), FrontierKind::kRight, edge, static_cast<float>(left) * 1e-3f});
     } else if (right - left > jump_mm) {  // sector s reaches farther: its left point
-      (void)frontiers_.push_back({static_cast<uint8_t>(s), FrontierKind::kLeft, edge,
-                                  static_cast<float>(right) * 1e-3f});
+      (void)frontiers_.push_back(
+          {static_cast<uint8_t>(s), FrontierKind::kLeft, edge, static_cast<float>(right) * 1e-3f});
     }
   }
   return Status::kOk;

@@ -40,8 +40,7 @@ bool SrtStarTree::in_safe_region(Point2 p, float margin_m, uint16_t except) cons
   return false;
 }
 
-Status SrtStarTree::add_node(const Pose2& pose, const SectorScan& sectors, uint16_t parent,
-                             uint16_t& id) {
+Status SrtStarTree::add_node(const Pose2& pose, const SectorScan& sectors, uint16_t parent, uint16_t& id) {
   id = kNoNode;
   if (!pose.finite() || sectors.count() == 0) return Status::kInvalidArgument;
   if (parent != kNoNode && parent >= nodes_.size()) return Status::kInvalidArgument;
@@ -56,6 +55,8 @@ Status SrtStarTree::add_node(const Pose2& pose, const SectorScan& sectors, uint1
   node.parent = parent;
   for (uint16_t s = 0; s < sectors.count(); ++s) {
     node.radius_mm[s] = sectors.radius_mm(s);
+    for (uint16_t j = 0; j < SectorScan::kRaysPerSector; ++j)
+      node.clear_mm[s * SectorScan::kRaysPerSector + j] = sectors.clear_mm(s, j);
     node.reach_mm = std::max(node.reach_mm, sectors.radius_mm(s));
   }
   (void)nodes_.push_back(node);  // cannot fail: checked full() above

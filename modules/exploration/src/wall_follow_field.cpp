@@ -28,9 +28,7 @@ Status WallFollowField::configure(const BeamGeometry& geometry, const WallFollow
   normalisation_ = params.normalisation;
   // Sums are in mm * 2^14; the output is in m/s.
   const float unit = 1.0f / (1000.0f * static_cast<float>(Trig::kOne));
-  beam_weight_ = normalisation_ == FieldNormalisation::kPerRadian
-                     ? unit * std::fabs(geometry.angle_step_rad)
-                     : unit;
+  beam_weight_ = normalisation_ == FieldNormalisation::kPerRadian ? unit * std::fabs(geometry.angle_step_rad) : unit;
   configured_ = true;
   return Status::kOk;
 }

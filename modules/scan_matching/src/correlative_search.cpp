@@ -42,9 +42,14 @@ void CorrelativeSearch::rotate(int k) {
   rotated_k_ = k;
   const float th = centre_.theta + static_cast<float>(k) * step_rad_;
   const float c = std::cos(th), s = std::sin(th);
+  // floor() without a library call: truncate, then step down for negative fractions.
+  const auto floor_i = [](float v) {
+    const auto t = static_cast<int32_t>(v);
+    return t - static_cast<int32_t>(v < static_cast<float>(t));
+  };
   for (uint16_t i = 0; i < n_; ++i) {
-    qx_[i] = static_cast<int32_t>(std::floor(c * px_[i] - s * py_[i] + cx_cells_));
-    qy_[i] = static_cast<int32_t>(std::floor(s * px_[i] + c * py_[i] + cy_cells_));
+    qx_[i] = floor_i(c * px_[i] - s * py_[i] + cx_cells_);
+    qy_[i] = floor_i(s * px_[i] + c * py_[i] + cy_cells_);
   }
 }
 
@@ -160,7 +165,7 @@ void CorrelativeSearch::dfs(int k, int32_t root_bound, GridPose& best) {
   }
 }
 
-GridPose CorrelativeSearch::branch_and_bound() {
+GridPose CorrelativeSearch::branch_and_bound(const GridPose* seeds, int seed_count) {
   const int nt = 2 * half_steps_ + 1;
   for (int k = -half_steps_; k <= half_steps_; ++k) {
     rotate(k);
@@ -169,7 +174,19 @@ GridPose CorrelativeSearch::branch_and_bound() {
   std::sort(order_.begin(), order_.begin() + nt, [](const ThetaBound& a, const ThetaBound& b) {
     return a.bound != b.bound ? a.bound > b.bound : a.k < b.k;
   });
+  // The prediction itself is a real candidate: starting from its exact score prunes early.
   GridPose best;
+  if (half_steps_ >= 0) {
+    rotate(0);
+    best = {0, 0, 0, bound(0, 0, 0)};
+  }
+  for (int i = 0; i < seed_count; ++i) {
+    const GridPose& sd = seeds[i];
+    if (std::abs(sd.k) > half_steps_ || std::abs(sd.tx) > half_cells_ || std::abs(sd.ty) > half_cells_) continue;
+    rotate(sd.k);
+    const GridPose cand{sd.k, sd.tx, sd.ty, bound(0, sd.tx, sd.ty)};
+    if (better(cand, best)) best = cand;
+  }
   for (int i = 0; i < nt; ++i) {
     const ThetaBound& t = order_[static_cast<std::size_t>(i)];
     if (t.bound < best.score) break;  // sorted: no later rotation can win either

@@ -13,7 +13,7 @@ LocalMap::LocalMap(const Params& p, LikelihoodMap& a, LikelihoodMap& b)
 Status LocalMap::configure(const Params& p) {
   if (p.keyframes < 1 || p.keyframes > kMaxKeyframes) return Status::kInvalidArgument;
   params_ = p;
-  extractor_ = ContourExtractor(p);
+  extractor_.set_params(p);
   for (LikelihoodMap* m : maps_) {
     const Status s = m->configure(p);
     if (!ok(s)) return s;
@@ -22,8 +22,7 @@ Status LocalMap::configure(const Params& p) {
   reader_.store(-1);
   count_ = head_ = 0;
   pending_ = false;
-  KeyScan drop;
-  while (queue_.pop(drop)) {
+  while (queue_.pop(incoming_)) {
   }
   return Status::kOk;
 }
@@ -42,8 +41,8 @@ const LikelihoodMap* LocalMap::acquire() {
 }
 
 Status LocalMap::rebuild() {
-  KeyScan in;
-  while (queue_.pop(in)) {
+  while (queue_.pop(incoming_)) {
+    const KeyScan& in = incoming_;
     const std::size_t k = params_.keyframes;
     const std::size_t slot = count_ < k ? (head_ + count_) % k : head_;
     if (count_ < k) {

@@ -7,6 +7,7 @@ namespace kestrel::scan_matching {
 namespace {
 
 float ceil_div(float a, float b) { return std::ceil(a / b - 1e-4f); }
+constexpr int kSeedWindow = 8;  // cells and steps of the hypothesis searches
 
 }  // namespace
 
@@ -103,19 +104,30 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   const float dt_prev = static_cast<float>((last_stamp_ - prev_stamp_).seconds());
   Pose2 pred = last_pose_;
   if (accepted_ >= 2 && dt_prev > 1e-4f) {
-    const float f = std::min(dt / dt_prev, 4.0f);
+    const float f = std::min(dt / dt_prev, 2.0f);
     pred.x += (last_pose_.x - prev_pose_.x) * f;
     pred.y += (last_pose_.y - prev_pose_.y) * f;
     pred.theta = wrap_angle(pred.theta + wrap_angle(last_pose_.theta - prev_pose_.theta) * f);
   }
+  // The window is the box around the prediction that max acceleration allows, grown to also
+  // hold the vehicle stopping (the last pose): on logs sampled seconds apart the velocity
+  // can change completely between scans, and on the vehicle the growth is v * dt, a few cm.
+  const float win_m0 = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
+  const float win_rad0 = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
+  const float gx = 0.5f * (last_pose_.x - pred.x), gy = 0.5f * (last_pose_.y - pred.y);
+  const float gt = 0.5f * wrap_angle(last_pose_.theta - pred.theta);
+  pred.x += gx;
+  pred.y += gy;
+  pred.theta = wrap_angle(pred.theta + gt);
+  // ...but never beyond the configured maximum: that bounds the worst-case time per scan.
+  const float win_m = std::min(win_m0 + std::max(std::fabs(gx), std::fabs(gy)), params_.max_window_m);
+  const float win_rad = std::min(win_rad0 + std::fabs(gt), params_.max_window_rad);
   const float res = map->resolution_m();
   // The search grid is the map's grid (and whole angle steps): a vehicle that holds still gets
   // the same answer scan after scan instead of one that wanders inside a cell.
   pred.x = map->origin_x_m() + std::round((pred.x - map->origin_x_m()) / res) * res;
   pred.y = map->origin_y_m() + std::round((pred.y - map->origin_y_m()) / res) * res;
   pred.theta = wrap_angle(std::round(pred.theta / params_.angle_step_rad) * params_.angle_step_rad);
-  const float win_m = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
-  const float win_rad = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
   int half_cells = static_cast<int>(ceil_div(win_m, res));
   int half_steps = static_cast<int>(ceil_div(win_rad, params_.angle_step_rad));
   const int cap_cells = params_.multi_resolution ? kMaxWindowCells : kMaxExhaustiveWindow;
@@ -123,8 +135,23 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   half_cells = std::clamp(half_cells, 1, cap_cells);
   half_steps = std::clamp(half_steps, 0, kMaxThetaSteps);
 
+  // Wide windows: a small search around each motion hypothesis (constant velocity, stopped)
+  // first; its optimum seeds the pruning of the full search, which stays exact.
+  std::array<GridPose, 2> seeds{};
+  int seed_count = 0;
+  if (params_.multi_resolution && half_cells > kSeedWindow && (gx != 0 || gy != 0 || gt != 0)) {
+    for (const float sign : {-1.0f, 1.0f}) {
+      const int hx = static_cast<int>(std::lround(sign * gx / res)), hy = static_cast<int>(std::lround(sign * gy / res));
+      const int hk = static_cast<int>(std::lround(sign * gt / params_.angle_step_rad));
+      const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
+                    wrap_angle(pred.theta + static_cast<float>(hk) * params_.angle_step_rad)};
+      (void)search_.setup(key_.points, c, *map, kSeedWindow, std::min(half_steps, kSeedWindow), params_.angle_step_rad);
+      const GridPose local = search_.branch_and_bound();
+      seeds[static_cast<std::size_t>(seed_count++)] = {local.k + hk, local.tx + hx, local.ty + hy, local.score};
+    }
+  }
   (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad);
-  const GridPose best = params_.multi_resolution ? search_.branch_and_bound() : search_.exhaustive();
+  const GridPose best = params_.multi_resolution ? search_.branch_and_bound(seeds.data(), seed_count) : search_.exhaustive();
   out.grid = best;
   const float denom = static_cast<float>(key_.points.count) * kCellMax;
   out.score = static_cast<float>(std::max(0, best.score)) / denom;
@@ -146,8 +173,18 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   const int r = std::min<int>(params_.cov_theta_steps, 64);
   const int k0 = std::max(-half_steps, best.k - r), k1 = std::min(half_steps, best.k + r);
   const int count = k1 - k0 + 1;
+  // Near the optimum a small rotation moves the best translation by a cell or two, so each
+  // rotation's best is taken over a +-2 cell neighbourhood by image addition (cheap, and
+  // exact whenever the per-rotation optimum stays in it).
   for (int k = k0; k <= k1; ++k) {
-    curve_[static_cast<std::size_t>(k - k0)] = k == best.k ? best.score : search_.best_at(k, best.tx, best.ty).score;
+    int32_t top = 0;
+    if (k == best.k) {
+      top = best.score;
+    } else {
+      const uint16_t* sl = search_.slice(k, best.tx, best.ty, 2);
+      for (int i = 0; i < 25; ++i) top = std::max<int32_t>(top, sl[i]);
+    }
+    curve_[static_cast<std::size_t>(k - k0)] = top;
   }
   const int ch = std::min<int>(params_.cov_half_window, kMaxExhaustiveWindow);
   const uint16_t* slice = search_.slice(best.k, best.tx, best.ty, ch);

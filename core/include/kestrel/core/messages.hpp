@@ -59,13 +59,17 @@ struct AttitudeSetpoint {
   float yaw_rate_radps = 0; // u_theta: counter-clockwise positive
 };
 
+// The autopilot's report. Attitude angles are right-handed Euler angles, body to world =
+// Rz(yaw) Ry(pitch) Rx(roll), as autopilots report them: pitch > 0 is nose down (thrust towards
+// +x body, like AttitudeSetpoint), roll > 0 lifts the left side (thrust towards -y body: the
+// opposite sign of AttitudeSetpoint's roll, which follows paper 000 equation 1).
 struct FlightStatus {
   TimeUs stamp;
   bool armed = false;
   float battery_v = 0;
-  float roll_rad = 0;
-  float pitch_rad = 0;
-  float yaw_rad = 0;
+  float roll_rad = 0;   // right-handed about body x: > 0 lifts the left side
+  float pitch_rad = 0;  // right-handed about body y (left): > 0 is nose down
+  float yaw_rad = 0;    // counter-clockwise from the world x axis
 };
 
 // A 2D pose measurement with its covariance (x, y, theta), e.g. from the scan matcher.

@@ -12,7 +12,7 @@ class LogSource {
 
   // Fills `out` with the next record: kOk; kNoData at the clean end of the log; any other
   // Status is an error, described by error(). Errors are sticky: once next() has failed it
-  // returns the same Status again.
+  // returns the same Status again. After a failure the contents of `out` are unspecified.
   virtual Status next(LogRecord& out) = 0;
   virtual const LogError& error() const = 0;
   virtual const LogStats& stats() const = 0;

@@ -6,6 +6,7 @@
 //
 // To add a mission: implement this interface and add one row to the table in
 // mission_registry.cpp (name, one-line summary, factory).
+#include "kestrel/output/canvas.hpp"
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,6 +37,16 @@ class Mission {
   virtual void metrics(MissionMetrics& /*out*/) const {}
   // A one-line reason after kFailed.
   virtual std::string failure() const { return {}; }
+  // Files of the mission's own in --out DIR (an estimated trajectory, plots), after the run.
+  virtual Status write_outputs(const std::string& /*out_dir*/) const { return Status::kOk; }
+  // The mission's layer on render.png (estimated path, planner state), drawn over the true
+  // path with the canvas's world view already set; and its legend rows.
+  virtual void draw(output::Canvas& /*canvas*/) const {}
+  struct LegendRow {
+    const char* label;
+    output::Rgb color;
+  };
+  virtual std::vector<LegendRow> legend() const { return {}; }
 };
 
 }  // namespace kestrel::sim

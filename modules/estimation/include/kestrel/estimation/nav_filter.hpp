@@ -53,8 +53,11 @@
 //   Status apply_correction(PoseMeasurement2) SLAM pose of the vehicle at meas.stamp
 //   NavState state() const             the newest estimate; valid once initialised
 //   counters(), frame_correction(), axis(i), heading(), history_span()
-//   Conventions: FlightStatus roll/pitch as AttitudeSetpoint (pitch > 0 nose down, +x
-//   acceleration; roll > 0 accelerates along +y body).
+//   Conventions: FlightStatus roll and pitch are right-handed rotations about body x
+//   (forward) and body y (left), body to world = Rz(yaw) Ry(pitch) Rx(roll), as the
+//   simulator's autopilot reports them: pitch > 0 is nose down (like AttitudeSetpoint), roll
+//   > 0 lifts the left side (accelerates along -y body: the opposite sign of
+//   AttitudeSetpoint's roll, which follows paper 000 equation 1).
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -6,7 +6,7 @@
 // parameters. Steps:
 //   1. replay the recorded sensor streams through the filter in delivery order (measurements
 //      arrive `measurement_latency` after they were taken, as on the vehicle);
-//   2. at every ground-truth sample compare the filter's velocity with the true velocity;
+//   2. at every ground-truth sample (after the start-up transient) compare the filter's velocity with the true velocity;
 //      the objective is the mean squared norm of the difference;
 //   3. coordinate descent in log-variance space over the learnable parameters (noise
 //      densities and measurement-covariance scales; variances stay positive and the step is
@@ -41,6 +41,9 @@ struct RecordedRun {
   std::span<const AltimeterSample> altitude;
   std::span<const TruthSample> truth;
   Duration measurement_latency;  // poses and altitude are delivered this long after their stamp
+  // Truth samples earlier than this after the run's first one are not scored: the filter's
+  // start-up transient (velocity initialised at zero) says nothing about the noise parameters.
+  Duration score_after = Duration::from_s(2.0);
 };
 
 struct VelocityError {

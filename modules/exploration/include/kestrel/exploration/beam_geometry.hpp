@@ -10,10 +10,10 @@
 namespace kestrel::exploration {
 
 struct BeamGeometry {
-  uint16_t beam_count = 0;      // beams per scan, 1..kMaxBeams
-  float first_angle_rad = 0;    // angle of beam 0 in the body frame, counter-clockwise
-  float angle_step_rad = 0;     // between consecutive beams (non-zero, either sign)
-  uint16_t max_range_mm = 0;    // the sensor's maximum range
+  uint16_t beam_count = 0;    // beams per scan, 1..kMaxBeams
+  float first_angle_rad = 0;  // angle of beam 0 in the body frame, counter-clockwise
+  float angle_step_rad = 0;   // between consecutive beams (non-zero, either sign)
+  uint16_t max_range_mm = 0;  // the sensor's maximum range
 
   static BeamGeometry of(const LaserScan& scan) {
     return {scan.beam_count, scan.first_angle_rad, scan.angle_step_rad, scan.max_range_mm};

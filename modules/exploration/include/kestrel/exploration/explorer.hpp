@@ -29,12 +29,12 @@ Result<ExplorerKind> parse_explorer_kind(const char* name);
 
 // What the last step did, for telemetry, tests and render.png.
 struct ExplorerStatus {
-  Status last = Status::kOk;    // of the last step (not kOk: the output was a hold)
-  uint32_t steps = 0;           // steps with usable input
-  uint32_t rejected = 0;        // steps answered with a hold
+  Status last = Status::kOk;  // of the last step (not kOk: the output was a hold)
+  uint32_t steps = 0;         // steps with usable input
+  uint32_t rejected = 0;      // steps answered with a hold
   bool has_target = false;
-  Point2 target;                // current waypoint (blend, srt)
-  FieldResult field;            // wall-following field of the last scan (blend, wallfollow)
+  Point2 target;                                   // current waypoint (blend, srt)
+  FieldResult field;                               // wall-following field of the last scan (blend, wallfollow)
   Eigen::Vector2f v_wf = Eigen::Vector2f::Zero();  // world frame, m/s, before the speed limit
   Eigen::Vector2f v_fr = Eigen::Vector2f::Zero();  // world frame, m/s (blend)
   float heading_target_rad = 0;                    // before the yaw-rate limit

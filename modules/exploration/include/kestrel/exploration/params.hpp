@@ -10,9 +10,9 @@
 
 namespace kestrel::exploration {
 
-inline constexpr std::size_t kMaxSectors = 64;     // sectors per scan (SRT-Star LSR)
-inline constexpr std::size_t kMaxNodes = 256;      // SRT nodes (waypoints reached)
-inline constexpr std::size_t kMaxFrontiers = 512;  // live frontier points of the whole tree
+inline constexpr std::size_t kMaxSectors = 64;                      // sectors per scan (SRT-Star LSR)
+inline constexpr std::size_t kMaxNodes = 256;                       // SRT nodes (waypoints reached)
+inline constexpr std::size_t kMaxFrontiers = 512;                   // live frontier points of the whole tree
 inline constexpr std::size_t kMaxLocalFrontiers = 3 * kMaxSectors;  // per scan: mid, left, right
 
 // How equation 3's sum over the n in-range beams is scaled. The paper sums plainly, so its
@@ -20,41 +20,47 @@ inline constexpr std::size_t kMaxLocalFrontiers = 3 * kMaxSectors;  // per scan:
 // every beam by the angle it covers (the sum becomes an integral over the scan), so one gain
 // serves the URG-04LX and the UTM-30LX alike.
 enum class FieldNormalisation : uint8_t {
-  kPerRadian,      // v = K * sum(...) * |angle step|: gain in 1/(s rad), laser-independent
-  kPaperSum,       // v = K * sum(...): paper 002 equation 3 literally, gain per beam
-  kPerInRangeBeam, // v = K * sum(...) / n: mean over in-range beams
+  kPerRadian,       // v = K * sum(...) * |angle step|: gain in 1/(s rad), laser-independent
+  kPaperSum,        // v = K * sum(...): paper 002 equation 3 literally, gain per beam
+  kPerInRangeBeam,  // v = K * sum(...) / n: mean over in-range beams
 };
 
 struct WallFollowParams {
   float target_range_m = 1.0f;  // r_t: distance from the walls the vehicle tries to keep
   float safe_range_m = 0.5f;    // r_safe: beams closer than this use K_safe (must be < r_t)
   float gain_wf = 0.1f;         // K_wf, 1/s (per radian of scan under kPerRadian)
-  float gain_safe = 3.0f;       // K_safe, 1/s: "orders of magnitude" above K_wf, beats K_fr
+  float gain_safe = 10.0f;      // K_safe, 1/s: "orders of magnitude" above K_wf, beats K_fr
+                                // even when only a door jamb's few beams are inside r_safe
   float max_range_m = 4.0f;     // beams beyond this are not "in range" (URG-04LX reach), so a
                                 // 30 m laser does not make far walls dominate the field
   FieldNormalisation normalisation = FieldNormalisation::kPerRadian;
 };
 
 struct SrtParams {
-  uint16_t sector_count = 32;         // sectors the scan is divided into (<= kMaxSectors)
-  float perception_range_m = 3.5f;    // R_p: a sector with no return closer is obstacle-free
-  float discontinuity_m = 1.0f;       // radius jump between adjacent sectors that is a frontier
-  float step_min_fraction = 0.5f;     // new waypoint between these fractions of the sector
-  float step_max_fraction = 0.9f;     //   radius (SRT's alpha), ...
-  float wall_clearance_m = 0.6f;      // ... and at least this far inside the sector radius
-  float coverage_margin_m = 0.2f;     // a frontier this deep inside another safe region is gone
+  uint16_t sector_count = 32;             // sectors the scan is divided into (<= kMaxSectors)
+  float perception_range_m = 3.5f;        // R_p: a sector with no return closer is obstacle-free
+  float discontinuity_m = 1.0f;           // radius jump between adjacent sectors that is a frontier
+  float step_min_fraction = 0.5f;         // new waypoint between these fractions of the sector
+  float step_max_fraction = 0.9f;         //   radius (SRT's alpha), ...
+  float clearance_m = 0.4f;               // ... inside the sector's clear radius: a disc of this
+                                          // radius moved along any bearing of the sector up to
+                                          // there touches no return (vehicle radius + margin)
+  uint8_t ray_search_sectors = 3;         // a frontier's waypoint may use rays this many sectors off
+  float coverage_margin_m = 0.05f;        // a frontier this deep inside another safe region is gone
   uint8_t max_attempts_per_frontier = 2;  // waypoints drawn for one frontier before it is dropped
-  uint32_t seed = 1;                  // PRNG seed: runs are deterministic per seed
+  uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
 };
 
 struct GuidanceParams {
-  float arrival_distance_m = 0.3f;     // d of Algorithm 1
-  float gain_fr = 0.5f;                // K_fr, 1/s (equation 5)
-  float speed_limit_mps = 0.5f;        // section V
-  float yaw_rate_limit_radps = 0.5f;   // section V, on the heading command
-  float waypoint_time_limit_s = 30.0f; // section V: exceeded -> erase the SRT and restart
-  float altitude_m = 1.0f;             // constant altitude command (section II)
-  float cruise_speed_mps = 0.3f;       // wall-following baseline only: speed along the wall
+  float arrival_distance_m = 0.3f;      // d of Algorithm 1
+  float gain_fr = 0.5f;                 // K_fr, 1/s (equation 5)
+  float speed_limit_mps = 0.5f;         // section V
+  float yaw_rate_limit_radps = 0.5f;    // section V, on the heading command
+  float waypoint_time_limit_s = 30.0f;  // section V: exceeded -> erase the SRT and restart
+  float altitude_m = 1.0f;              // constant altitude command (section II)
+  float cruise_speed_mps = 0.3f;        // wall-following baseline only: speed along the wall
+  float wall_hold_gain = 0.5f;          // wall-following baseline only, 1/s: pulls the nearest
+                                        // return to r_t (the field alone centres in a room)
 };
 
 struct Params {

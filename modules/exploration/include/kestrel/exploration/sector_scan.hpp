@@ -8,6 +8,14 @@
 // reaches much farther than its neighbour on that side (a range discontinuity: a doorway, the
 // end of a wall).
 //
+// For motion the safe region is eroded by the vehicle's clearance rho (Freda and Oriolo account
+// for the robot's size the same way): every sector holds kRaysPerSector evenly spaced rays, and a
+// ray's clear distance is how far a disc of radius rho can travel along it before touching any
+// return of the scan (r_i cos(phi) - sqrt(rho^2 - r_i^2 sin^2(phi)) for a return at angle phi
+// off the ray and less than rho to its side), at most the sector's radius and R_p - rho.
+// Waypoints are drawn along rays, within their clear distance; frontier removal uses the
+// perceived radius.
+//
 // Beam classes: a return within R_p is an obstacle; kNoReturn or a return beyond R_p is free;
 // kTooNear is an obstacle at zero range; kDropout and kDeflected say nothing, so a sector that
 // holds one is not obstacle-free but its radius comes from its other beams (a sector of only
@@ -45,11 +53,20 @@ class SectorScan {
   float width_rad() const { return width_rad_; }
   float mid_angle(uint16_t s) const { return start_rad_ + (static_cast<float>(s) + 0.5f) * width_rad_; }
   uint16_t radius_mm(uint16_t s) const { return radius_mm_[s]; }
+  static constexpr uint16_t kRaysPerSector = 4;
+  // Ray j (0 <= j < kRaysPerSector) of sector s and its clear distance.
+  float ray_angle(uint16_t s, uint16_t j) const {
+    return start_rad_ + (static_cast<float>(s) + (static_cast<float>(j) + 0.5f) / kRaysPerSector) * width_rad_;
+  }
+  uint16_t clear_mm(uint16_t s, uint16_t j) const { return clear_mm_[s * kRaysPerSector + j]; }
   bool obstacle_free(uint16_t s) const { return free_[s]; }
   const IVector<LocalFrontier>& frontiers() const { return frontiers_; }
 
  private:
+  void erode(const LaserScan& scan, const SrtParams& params, uint16_t rp_mm);
+
   std::array<uint16_t, kMaxSectors> radius_mm_{};
+  std::array<uint16_t, kMaxSectors * kRaysPerSector> clear_mm_{};
   std::array<bool, kMaxSectors> free_{};
   StaticVector<LocalFrontier, kMaxLocalFrontiers> frontiers_;
   float start_rad_ = 0;

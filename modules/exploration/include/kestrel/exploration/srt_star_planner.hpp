@@ -6,14 +6,20 @@
 // the scan is divided into sectors and stored as a new node, child of the node it left
 // (updateSRT); if it came back by backtracking, the node it returned to becomes current. Then,
 // if the current node still owns a frontier, a new waypoint is drawn at random (seeded PRNG)
-// inside the sector of one of its frontiers (newWaypoint); otherwise the parent is the next
-// waypoint (previousWaypoint, backtracking). Exploration is finished when the root owns no
-// frontier: the waypoint stays on the root, so the vehicle returns to where it started.
+// in the sector of one of its frontiers (newWaypoint): a random ray of the sector (or, when
+// all of the sector's rays are blocked for the vehicle, of a sector up to ray_search_sectors
+// away) at a random fraction of the sector radius within the ray's clear distance, and only if
+// the straight path from the vehicle keeps the clearance from the scan just taken (SRT's
+// Valid()). Otherwise the parent is the next waypoint (previousWaypoint, backtracking); if the
+// vehicle, up to d beside the node, has no clear straight path to the parent, it first closes
+// in on the node (within d / 2). Exploration is finished when the root owns no frontier: the
+// waypoint stays on the root, so the vehicle returns to where it started.
 //
-// Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped
-// (so a frontier that cannot be seen past never traps the planner); when the waypoint is not
-// reached within the time limit, or the tree is full when a node must be added, the tree is
-// erased and exploration restarts from the current pose with a new root.
+// Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
+// and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
+// past never traps the planner); when the waypoint is not reached within the time limit, or
+// the tree is full when a node must be added, the tree is erased and exploration restarts from
+// the current pose with a new root.
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
@@ -53,8 +59,9 @@ class SrtStarPlanner {
   bool finished() const { return mode_ == PlannerMode::kFinished; }
   bool has_waypoint() const { return mode_ != PlannerMode::kIdle; }
   Point2 waypoint() const { return waypoint_; }
-  uint16_t current_node() const { return current_; }  // node the vehicle is leaving or at
+  uint16_t current_node() const { return current_; }     // node the vehicle is leaving or at
   uint16_t target_node() const { return target_node_; }  // node of a backtrack, else kNoNode
+  bool aligning() const { return aligning_; }
   const SrtStarTree& tree() const { return tree_; }
   const SectorScan& last_sectors() const { return sectors_; }
   uint32_t waypoints_issued() const { return waypoints_issued_; }
@@ -65,7 +72,9 @@ class SrtStarPlanner {
  private:
   void restart(const Pose2& pose, const LaserScan& scan, TimeUs now, RestartReason why);
   Status grow(const Pose2& pose, const LaserScan& scan, TimeUs now);
-  void choose_next(TimeUs now);
+  void choose_next(const Pose2& pose, const LaserScan& scan, TimeUs now);
+  // Whether the straight path from pose to p keeps the clearance from every return of scan.
+  bool path_clear(const Pose2& pose, const LaserScan& scan, Point2 p) const;
   void set_waypoint(Point2 p, TimeUs now);
 
   SrtParams srt_{};
@@ -77,6 +86,7 @@ class SrtStarPlanner {
   Point2 waypoint_{};
   uint16_t current_ = kNoNode;
   uint16_t target_node_ = kNoNode;
+  bool aligning_ = false;  // backtracking: closing in on the node before leaving for its parent
   TimeUs waypoint_time_{};
   uint32_t waypoints_issued_ = 0;
   uint32_t restarts_ = 0;

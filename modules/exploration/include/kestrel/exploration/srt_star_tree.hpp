@@ -30,8 +30,14 @@ struct SrtNode {
   float sector_width_rad = 0;
   uint16_t sector_count = 0;
   uint16_t parent = kNoNode;
-  uint16_t reach_mm = 0;       // largest sector radius: cheap rejection in safe-region tests
-  std::array<uint16_t, kMaxSectors> radius_mm{};
+  uint16_t reach_mm = 0;                          // largest sector radius: cheap rejection in safe-region tests
+  std::array<uint16_t, kMaxSectors> radius_mm{};  // perceived: the safe region
+  // Clear distance of each sector's rays (SectorScan::kRaysPerSector each): where to fly.
+  std::array<uint16_t, kMaxSectors * SectorScan::kRaysPerSector> clear_mm{};
+  float ray_angle(uint16_t s, uint16_t j) const {
+    return sector_start_rad +
+           (static_cast<float>(s) + (static_cast<float>(j) + 0.5f) / SectorScan::kRaysPerSector) * sector_width_rad;
+  }
 
   // The sector holding world point p, or -1 when p is outside the scanned field of view.
   int sector_of(Point2 p) const;
@@ -44,7 +50,7 @@ struct Frontier {
   uint16_t node = kNoNode;  // the node whose scan produced it
   uint8_t sector = 0;       // its sector in that node
   FrontierKind kind = FrontierKind::kMid;
-  uint8_t attempts = 0;     // waypoints drawn towards it so far
+  uint8_t attempts = 0;  // waypoints drawn towards it so far
 };
 
 class SrtStarTree {
@@ -72,7 +78,7 @@ class SrtStarTree {
 
   uint32_t frontiers_dropped() const { return frontiers_dropped_; }  // did not fit
   uint32_t frontiers_removed() const { return frontiers_removed_; }  // covered by a new region
-  float coverage_margin_m = 0.2f;
+  float coverage_margin_m = 0.05f;                                   // set from SrtParams by the planner
 
  private:
   StaticVector<SrtNode, kMaxNodes> nodes_;

@@ -27,9 +27,9 @@ namespace kestrel::exploration {
 
 struct FieldResult {
   Eigen::Vector2f body_mps = Eigen::Vector2f::Zero();  // (u_cmd, v_cmd), equation 3
-  uint16_t in_range = 0;  // n: beams that contributed
-  uint16_t in_safe = 0;   // of those, beams closer than r_safe (K_safe)
-  uint16_t nearest_beam = 0xFFFFu;  // index of the nearest in-range return, 0xFFFF if none
+  uint16_t in_range = 0;                               // n: beams that contributed
+  uint16_t in_safe = 0;                                // of those, beams closer than r_safe (K_safe)
+  uint16_t nearest_beam = 0xFFFFu;                     // index of the nearest in-range return, 0xFFFF if none
   uint16_t nearest_mm = 0;
 };
 

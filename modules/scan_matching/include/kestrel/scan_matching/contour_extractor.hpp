@@ -34,6 +34,7 @@ struct Contours {
 class ContourExtractor {
  public:
   explicit ContourExtractor(const Params& p) : params_(p) {}
+  void set_params(const Params& p) { params_ = p; }
   void extract(const ScanPoints& pts, Contours& out);
 
  private:

@@ -40,7 +40,9 @@ class CorrelativeSearch {
                int half_cells, int half_steps, float step_rad);
 
   GridPose exhaustive();
-  GridPose branch_and_bound();
+  // Seeds are poses of this window (e.g. the optima of small searches around each motion
+  // hypothesis): their exact scores start the pruning, the result is still the exact optimum.
+  GridPose branch_and_bound(const GridPose* seeds = nullptr, int seed_count = 0);
   // Best translation at one rotation, exact (no pruning against other rotations); the seed is
   // any translation inside the window, ideally near the answer.
   GridPose best_at(int k, int seed_tx = 0, int seed_ty = 0);

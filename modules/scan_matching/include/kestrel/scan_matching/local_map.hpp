@@ -60,6 +60,7 @@ class LocalMap {
   std::atomic<int> reader_{-1};
   std::atomic<uint32_t> generation_{0};
   RingBuffer<KeyScan, 4> queue_;
+  KeyScan incoming_;  // the scan being taken off the queue (too big for a stack frame)
   std::array<Stored, kMaxKeyframes> keys_{};
   std::size_t head_ = 0, count_ = 0;  // ring of the last k key scans
   bool pending_ = false;

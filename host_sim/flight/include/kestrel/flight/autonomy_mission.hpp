@@ -1,0 +1,86 @@
+#pragma once
+// The closed-loop missions of kestrel-sim: the autonomy stack (modules/autonomy) flies the
+// simulated vehicle through the simulator's HAL drivers, exactly as kestrel-fw flies the
+// real one. `hover` takes off, hovers at 1 m and lands; `waypoints` flies a list of
+// waypoints; `explore` explores with the chosen explorer and flies home. The mission reads
+// ground truth only to score the flight: hover error, estimate error, trajectories, plots.
+//
+// Options (--mission-arg KEY=VALUE, or the named CLI flags):
+//   waypoints=FILE   one waypoint per line: x y z [heading_deg [hold_s]] (waypoints mission)
+//   explorer=NAME    blend (default), wallfollow or srt (explore mission)
+//   hover_s=S        time at the hover set-point (default 60)
+//   explore_s=S      explore phase time limit (default 600)
+//   delay_s=S        extra delivery delay of every scan (paper 000 Figure 3b)
+//   history=on|off   apply scans at the time they were taken (on, default) or on arrival
+//   ekf=FILE         EKF parameter file (estimation::load_ekf_params)
+//   controller=FILE  controller parameter file (control::load_controller_params)
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "kestrel/autonomy/autonomy_stack.hpp"
+#include "kestrel/flight/delayed_laser.hpp"
+#include "kestrel/sim/mission.hpp"
+#include "kestrel/sim/mission_registry.hpp"
+
+namespace kestrel::flight {
+
+struct FlightOptions {
+  mission::MissionKind kind = mission::MissionKind::kHover;
+  autonomy::StackConfig stack;
+  double delay_s = 0;
+  bool use_measurement_time = true;
+};
+
+// Parses the options of mission `kind`; "" or the reason they are unusable.
+std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOptions& options, FlightOptions& out);
+// Reads a waypoint file; "" or "FILE:LINE: reason".
+std::string load_waypoints(const std::string& path, autonomy::StackConfig& stack);
+
+// One sample of estimate against truth, taken at every scan.
+struct EstimateSample {
+  double t_s;
+  Eigen::Vector3d est_pos, true_pos, est_vel, true_vel;
+  double est_yaw, true_yaw;
+};
+
+class AutonomyMission final : public sim::Mission {
+ public:
+  explicit AutonomyMission(FlightOptions options);
+  ~AutonomyMission() override;
+
+  const char* name() const override { return mission::to_string(options_.kind); }
+  Status start(sim::Simulation& sim) override;
+  sim::MissionState tick(sim::Simulation& sim) override;
+  Duration tick_period() const override { return Duration::from_ms(1); }
+  void metrics(sim::MissionMetrics& out) const override;
+  std::string failure() const override { return failure_; }
+  Status write_outputs(const std::string& out_dir) const override;
+  void draw(output::Canvas& canvas) const override;
+  std::vector<LegendRow> legend() const override;
+
+  const autonomy::AutonomyStack& stack() const { return *stack_; }
+  const std::vector<EstimateSample>& samples() const { return samples_; }
+  double hover_rms_m() const;
+
+ private:
+  void score(sim::Simulation& sim);
+
+  FlightOptions options_;
+  class RealClock;
+  std::unique_ptr<RealClock> exec_clock_;
+  std::unique_ptr<DelayedLaser> delayed_;
+  std::unique_ptr<autonomy::AutonomyStack> stack_;
+  std::string failure_;
+  uint64_t allocs_in_loop_ = 0;
+  // Scores.
+  std::vector<EstimateSample> samples_;
+  double hover_sq_sum_ = 0;
+  uint64_t hover_n_ = 0;
+  double pos_err_sum_ = 0;
+  std::vector<double> vel_errs_;
+  mission::Phase last_phase_ = mission::Phase::kIdle;
+  std::vector<std::pair<double, std::string>> phase_log_;
+};
+
+}  // namespace kestrel::flight

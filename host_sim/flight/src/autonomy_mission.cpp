@@ -1,0 +1,311 @@
+#include "kestrel/flight/autonomy_mission.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "kestrel/core/alloc_guard.hpp"
+#include "kestrel/output/plot.hpp"
+#include "kestrel/output/tum_writer.hpp"
+#include "kestrel/sim/simulation.hpp"
+#if defined(KESTREL_HAS_PNG)
+#include "kestrel/output/png_writer.hpp"
+#endif
+
+namespace kestrel::flight {
+
+// Task execution is measured on the host's real clock, even though releases follow the
+// simulated one: the timing figures are what this machine's CPU took.
+class AutonomyMission::RealClock final : public TimeSource {
+ public:
+  TimeUs now() const override {
+    timespec ts{};
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return TimeUs{static_cast<int64_t>(ts.tv_sec) * 1'000'000 + ts.tv_nsec / 1000};
+  }
+};
+
+namespace {
+
+// The SRT-Star tree (paper 002 Figure 5): safe regions as light sector fans, nodes and their
+// parent links, frontiers as crosses, the current waypoint as a ring.
+void draw_srt_tree(const exploration::SrtStarPlanner& planner, output::Canvas& c) {
+  const exploration::SrtStarTree& tree = planner.tree();
+  for (const exploration::SrtNode& n : tree.nodes()) {
+    for (uint16_t k = 0; k < n.sector_count; ++k) {
+      const double a = n.sector_start_rad + (k + 0.5) * n.sector_width_rad;
+      const double r = n.radius_mm[k] * 1e-3;
+      c.world_line(n.position.x, n.position.y, n.position.x + r * std::cos(a), n.position.y + r * std::sin(a),
+                   output::Rgb{200, 230, 200}, 1);
+    }
+  }
+  for (const exploration::SrtNode& n : tree.nodes()) {
+    if (n.parent != exploration::kNoNode) {
+      const exploration::SrtNode& p = tree.nodes()[n.parent];
+      c.world_line(p.position.x, p.position.y, n.position.x, n.position.y, output::colors::kGreen, 2);
+    }
+    c.world_circle(n.position.x, n.position.y, 3, output::colors::kGreen, true);
+  }
+  for (const exploration::Frontier& f : tree.frontiers()) {
+    const int x = c.wx(f.position.x), y = c.wy(f.position.y);
+    c.line(x - 3, y - 3, x + 3, y + 3, output::colors::kPurple, 2);
+    c.line(x - 3, y + 3, x + 3, y - 3, output::colors::kPurple, 2);
+  }
+  if (planner.has_waypoint()) c.world_circle(planner.waypoint().x, planner.waypoint().y, 6, output::colors::kPurple, false);
+}
+
+bool parse_double(const std::string& s, double& out) {
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end != s.c_str() && *end == '\0' && std::isfinite(out);
+}
+
+}  // namespace
+
+std::string load_waypoints(const std::string& path, autonomy::StackConfig& stack) {
+  std::ifstream in(path);
+  if (!in) return path + ": cannot be read";
+  stack.waypoints.clear();
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream ls(line);
+    std::vector<double> v;
+    std::string tok;
+    while (ls >> tok) {
+      double d;
+      if (!parse_double(tok, d)) return path + ":" + std::to_string(n) + ": '" + tok + "' is not a number";
+      v.push_back(d);
+    }
+    if (v.empty()) continue;
+    if (v.size() < 3 || v.size() > 5)
+      return path + ":" + std::to_string(n) + ": expected x y z [heading_deg [hold_s]], got " +
+             std::to_string(v.size()) + " values";
+    if (v[2] <= 0) return path + ":" + std::to_string(n) + ": z must be above the floor";
+    if (v.size() == 5 && v[4] < 0) return path + ":" + std::to_string(n) + ": hold time must not be negative";
+    mission::Waypoint w;
+    w.position_m = {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+    w.heading_rad = v.size() >= 4 ? static_cast<float>(v[3] * M_PI / 180.0) : 0.0f;
+    w.hold_s = v.size() == 5 ? static_cast<float>(v[4]) : 0.0f;
+    if (!stack.waypoints.push_back(w))
+      return path + ":" + std::to_string(n) + ": more than " +
+             std::to_string(mission::MissionController::kMaxWaypoints) + " waypoints";
+  }
+  if (stack.waypoints.empty()) return path + ": no waypoints";
+  return "";
+}
+
+std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOptions& options, FlightOptions& out) {
+  out.kind = kind;
+  out.stack.mission_kind = kind;
+  const char* mission_name = mission::to_string(kind);
+  for (const auto& [key, value] : options.values) {
+    double d = 0;
+    if (key == "waypoints" && kind == mission::MissionKind::kWaypoints) {
+      if (std::string e = load_waypoints(value, out.stack); !e.empty()) return e;
+    } else if (key == "explorer" && kind == mission::MissionKind::kExplore) {
+      const Result<exploration::ExplorerKind> k = exploration::parse_explorer_kind(value.c_str());
+      if (!k.ok()) return "explorer: unknown explorer '" + value + "' (blend, wallfollow or srt)";
+      out.stack.explorer_kind = k.value();
+    } else if (key == "hover_s" && kind == mission::MissionKind::kHover) {
+      if (!parse_double(value, d) || d < 0) return "hover_s: '" + value + "' is not a non-negative number";
+      out.stack.mission.hover_duration_s = static_cast<float>(d);
+    } else if (key == "explore_s" && kind == mission::MissionKind::kExplore) {
+      if (!parse_double(value, d) || d < 0) return "explore_s: '" + value + "' is not a non-negative number";
+      out.stack.mission.explore_time_limit_s = static_cast<float>(d);
+    } else if (key == "delay_s") {
+      if (!parse_double(value, d) || d < 0 || d > 2) return "delay_s: '" + value + "' is not a delay in [0, 2] s";
+      out.delay_s = d;
+    } else if (key == "history") {
+      if (value != "on" && value != "off") return "history: expected on or off, got '" + value + "'";
+      out.use_measurement_time = value == "on";
+    } else if (key == "ekf") {
+      params::ParamError err;
+      if (estimation::load_ekf_params(value.c_str(), out.stack.ekf, err) != Status::kOk)
+        return value + ":" + std::to_string(err.line) + ": " + err.message;
+    } else if (key == "controller") {
+      params::ParamError err;
+      if (control::load_controller_params(value.c_str(), out.stack.controller, err) != Status::kOk)
+        return value + ":" + std::to_string(err.line) + ": " + err.message;
+    } else {
+      return std::string("mission '") + mission_name + "' has no option '" + key + "'";
+    }
+  }
+  if (kind == mission::MissionKind::kWaypoints && out.stack.waypoints.empty())
+    return "mission 'waypoints' needs --waypoints FILE";
+  return "";
+}
+
+AutonomyMission::AutonomyMission(FlightOptions options)
+    : options_(std::move(options)), exec_clock_(std::make_unique<RealClock>()) {}
+
+AutonomyMission::~AutonomyMission() = default;
+
+Status AutonomyMission::start(sim::Simulation& sim) {
+  hal::LaserScanner* laser = &sim.laser();
+  if (options_.delay_s > 0) {
+    delayed_ = std::make_unique<DelayedLaser>(sim.laser(), sim.clock(), Duration::from_s(options_.delay_s));
+    laser = delayed_.get();
+  }
+  const autonomy::Devices devices{sim.clock(), *laser, sim.imu(), &sim.altimeter(), sim.flight_controller()};
+  stack_ = std::make_unique<autonomy::AutonomyStack>(devices, *exec_clock_);
+  autonomy::StackConfig cfg = options_.stack;
+  const sim::VehicleState& t = sim.truth();
+  cfg.home = Pose2{static_cast<float>(t.position_m.x()), static_cast<float>(t.position_m.y()),
+                   static_cast<float>(t.yaw_rad)};
+  cfg.use_measurement_time = options_.use_measurement_time;
+  if (stack_->configure(cfg) != Status::kOk) {
+    failure_ = std::string("autonomy stack configuration: ") + stack_->configure_error();
+    return Status::kInvalidArgument;
+  }
+  const Status s = stack_->start();
+  if (s != Status::kOk) failure_ = std::string("autonomy stack start: ") + to_string(s);
+  samples_.reserve(200000);
+  vel_errs_.reserve(200000);
+  return s;
+}
+
+sim::MissionState AutonomyMission::tick(sim::Simulation& sim) {
+  // The loop proper: every allocation in here is one too many (DESIGN.md).
+  while (stack_->next_release() <= sim.now()) {
+    const uint64_t before = alloc_guard::count();
+    alloc_guard::arm();
+    stack_->poll();
+    stack_->background_step();
+    alloc_guard::disarm();
+    allocs_in_loop_ += alloc_guard::count() - before;
+    if (stack_->new_match()) score(sim);
+  }
+  const mission::Phase p = stack_->mission().phase();
+  if (p != last_phase_) {
+    phase_log_.emplace_back(sim.now().seconds(), mission::to_string(p));
+    last_phase_ = p;
+  }
+  if (p == mission::Phase::kHover) {
+    const Eigen::Vector3d sp = stack_->setpoint().position_m.cast<double>();
+    hover_sq_sum_ += (sim.truth().position_m - sp).squaredNorm();
+    ++hover_n_;
+  }
+  if (stack_->finished()) return sim::MissionState::kDone;
+  return sim::MissionState::kRunning;
+}
+
+void AutonomyMission::score(sim::Simulation& sim) {
+  const NavState& nav = stack_->nav();
+  if (!nav.valid) return;
+  sim::VehicleState truth;
+  if (sim.truth_at(nav.stamp, truth) != Status::kOk) return;
+  EstimateSample s;
+  s.t_s = nav.stamp.seconds();
+  s.est_pos = nav.position_m.cast<double>();
+  s.true_pos = truth.position_m;
+  s.est_vel = nav.velocity_mps.cast<double>();
+  s.true_vel = truth.velocity_mps;
+  s.est_yaw = nav.heading_rad;
+  s.true_yaw = truth.yaw_rad;
+  pos_err_sum_ += (s.est_pos - s.true_pos).norm();
+  vel_errs_.push_back((s.est_vel - s.true_vel).norm());
+  samples_.push_back(s);
+}
+
+double AutonomyMission::hover_rms_m() const {
+  return hover_n_ == 0 ? std::nan("") : std::sqrt(hover_sq_sum_ / static_cast<double>(hover_n_));
+}
+
+void AutonomyMission::metrics(sim::MissionMetrics& out) const {
+  const double n = static_cast<double>(samples_.size());
+  double vel_mean = 0, vel_sq = 0;
+  for (double e : vel_errs_) {
+    vel_mean += e;
+    vel_sq += e * e;
+  }
+  vel_mean = n > 0 ? vel_mean / n : std::nan("");
+  const double vel_std = n > 1 ? std::sqrt(std::max(0.0, vel_sq / n - vel_mean * vel_mean)) : std::nan("");
+  if (options_.kind == mission::MissionKind::kHover) out.emplace_back("hover_rms_m", hover_rms_m());
+  out.emplace_back("pos_err_mean_m", n > 0 ? pos_err_sum_ / n : std::nan(""));
+  out.emplace_back("vel_err_mean_mps", vel_mean);
+  out.emplace_back("vel_err_std_mps", vel_std);
+  out.emplace_back("heap_allocs_after_arm", static_cast<double>(allocs_in_loop_));
+  out.emplace_back("delay_s", options_.delay_s);
+  out.emplace_back("state_history", options_.use_measurement_time ? 1.0 : 0.0);
+  const autonomy::StackCounters& c = stack_->counters();
+  out.emplace_back("stack_scans", c.scans);
+  out.emplace_back("scans_matched", c.scans_matched);
+  out.emplace_back("scans_rejected", c.scans_rejected);
+  out.emplace_back("poses_gated", c.poses_gated);
+  out.emplace_back("map_rebuilds", c.map_rebuilds);
+  out.emplace_back("setpoints_sent", c.setpoints_sent);
+  out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
+  const Scheduler& s = stack_->scheduler();
+  for (std::size_t i = 0; i < s.task_count(); ++i) {
+    const std::string prefix = std::string("tasks.") + s.spec(i).name + ".";
+    out.emplace_back(prefix + "us_mean", s.stats(i).mean_us());
+    out.emplace_back(prefix + "us_max", static_cast<double>(s.stats(i).max_us));
+    out.emplace_back(prefix + "deadline_misses", static_cast<double>(s.stats(i).deadline_misses()));
+    out.emplace_back(prefix + "runs", static_cast<double>(s.stats(i).runs));
+  }
+}
+
+Status AutonomyMission::write_outputs(const std::string& dir) const {
+  output::TumWriter tum;
+  if (tum.open(dir + "/trajectory_est.tum") != Status::kOk) return Status::kIoError;
+  for (const EstimateSample& s : samples_)
+    if (tum.write(s.t_s, s.est_pos.x(), s.est_pos.y(), s.est_pos.z(), s.est_yaw) != Status::kOk) return Status::kIoError;
+  if (tum.close() != Status::kOk) return Status::kIoError;
+#if defined(KESTREL_HAS_PNG)
+  // Paper 000 Figure 6: estimated against true position and velocity.
+  output::Series ex{"estimate x", output::colors::kRed, {}, {}}, tx{"truth x", output::colors::kBlue, {}, {}};
+  output::Series ey{"estimate y", output::colors::kOrange, {}, {}}, ty{"truth y", output::colors::kCyan, {}, {}};
+  output::Series evx{"estimate vx", output::colors::kRed, {}, {}}, tvx{"truth vx", output::colors::kBlue, {}, {}};
+  output::Series evy{"estimate vy", output::colors::kOrange, {}, {}}, tvy{"truth vy", output::colors::kCyan, {}, {}};
+  for (const EstimateSample& s : samples_) {
+    for (output::Series* se : {&ex, &tx, &ey, &ty, &evx, &tvx, &evy, &tvy}) se->x.push_back(s.t_s);
+    ex.y.push_back(s.est_pos.x());
+    tx.y.push_back(s.true_pos.x());
+    ey.y.push_back(s.est_pos.y());
+    ty.y.push_back(s.true_pos.y());
+    evx.y.push_back(s.est_vel.x());
+    tvx.y.push_back(s.true_vel.x());
+    evy.y.push_back(s.est_vel.y());
+    tvy.y.push_back(s.true_vel.y());
+  }
+  const output::Canvas plot = output::plot_panels(
+      {{"position x", "m", {tx, ex}}, {"position y", "m", {ty, ey}}, {"velocity x", "m/s", {tvx, evx}},
+       {"velocity y", "m/s", {tvy, evy}}},
+      "time [s]", 1100, 230);
+  if (output::write_png(dir + "/estimate_vs_truth.png", plot) != Status::kOk) return Status::kIoError;
+#endif
+  return Status::kOk;
+}
+
+std::vector<sim::Mission::LegendRow> AutonomyMission::legend() const {
+  std::vector<LegendRow> rows = {{"ESTIMATED PATH", output::colors::kOrange}};
+  if (options_.kind == mission::MissionKind::kExplore) {
+    rows.push_back({"SRT TREE", output::colors::kGreen});
+    rows.push_back({"FRONTIER / WAYPOINT", output::colors::kPurple});
+    rows.push_back({"WAY HOME (TRAIL)", output::colors::kGrey});
+  }
+  return rows;
+}
+
+void AutonomyMission::draw(output::Canvas& c) const {
+  // The estimated path over the world (the true one is drawn by the simulator's renderer).
+  for (std::size_t i = 1; i < samples_.size(); ++i)
+    c.world_line(samples_[i - 1].est_pos.x(), samples_[i - 1].est_pos.y(), samples_[i].est_pos.x(),
+                 samples_[i].est_pos.y(), output::colors::kOrange, 1);
+  const exploration::Explorer* e = stack_ ? stack_->explorer() : nullptr;
+  const exploration::SrtStarPlanner* planner = e != nullptr ? e->planner() : nullptr;
+  if (planner != nullptr) draw_srt_tree(*planner, c);
+  if (stack_) {
+    const mission::BreadcrumbTrail& trail = stack_->mission().trail();
+    for (std::size_t i = 0; i < trail.size(); ++i)
+      c.world_circle(trail.point(i).x(), trail.point(i).y(), 1, output::colors::kGrey, true);
+  }
+}
+
+}  // namespace kestrel::flight

@@ -1,0 +1,133 @@
+#pragma once
+// The composition module: the one place that sees the HAL. It wires
+//   Imu -> NavFilter.predict, Altimeter -> NavFilter.update_altitude,
+//   LaserScanner -> ScanMatcher -> NavFilter.update_pose,
+//   (Explorer ->) MissionController -> Controller -> FlightController
+// and runs them as the real-time loop (level 2 of paper 000 Figure 4) on the core Scheduler,
+// with the task table of task_table.hpp. The scan matcher's local-map rebuild is level 3:
+// background_step() runs it, from a background thread on a board or in lockstep after each
+// poll in the simulator (deterministic), and the loop never waits for it.
+//
+// Memory: everything is inside this object (about 1.2 MiB with the on-board map), which the
+// firmware allocates once at start-up (static storage or one allocation before arming). After
+// start() nothing allocates.
+#include <cstdint>
+
+#include "kestrel/autonomy/stack_config.hpp"
+#include "kestrel/autonomy/task_table.hpp"
+#include "kestrel/control/controller.hpp"
+#include "kestrel/core/scheduler.hpp"
+#include "kestrel/estimation/nav_filter.hpp"
+#include "kestrel/exploration/blend_explorer.hpp"
+#include "kestrel/exploration/srt_explorer.hpp"
+#include "kestrel/exploration/wall_follow_explorer.hpp"
+#include "kestrel/hal/altimeter.hpp"
+#include "kestrel/hal/clock.hpp"
+#include "kestrel/hal/flight_controller.hpp"
+#include "kestrel/hal/imu.hpp"
+#include "kestrel/hal/laser_scanner.hpp"
+#include "kestrel/mission/mission_controller.hpp"
+#include "kestrel/scan_matching/scan_matcher.hpp"
+
+namespace kestrel::autonomy {
+
+// The devices the stack flies with. The altimeter is optional (nullptr): the EKF then holds
+// altitude on the IMU alone, which is only good for short hops.
+struct Devices {
+  hal::Clock& clock;
+  hal::LaserScanner& laser;
+  hal::Imu& imu;
+  hal::Altimeter* altimeter;
+  hal::FlightController& autopilot;
+};
+
+// What the loop did, for metrics.json and telemetry.
+struct StackCounters {
+  uint32_t scans = 0;
+  uint32_t scans_matched = 0;
+  uint32_t scans_rejected = 0;       // by the scan matcher (flags say why)
+  uint32_t poses_gated = 0;          // matched, but the EKF's gate refused the pose
+  uint32_t imu_samples = 0;
+  uint32_t imu_errors = 0;
+  uint32_t altitude_samples = 0;
+  uint32_t guidance_steps = 0;
+  uint32_t setpoints_sent = 0;
+  uint32_t autopilot_errors = 0;
+  uint32_t map_rebuilds = 0;
+  uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
+};
+
+class AutonomyStack {
+ public:
+  // exec_clock measures task execution time (a real clock even in simulation).
+  AutonomyStack(const Devices& devices, const TimeSource& exec_clock);
+
+  // Validates and applies the whole configuration; kInvalidArgument names nothing, so each
+  // sub-configuration is checked by its module with its own Status (see configure_error()).
+  Status configure(const StackConfig& config);
+  const char* configure_error() const { return configure_error_; }
+
+  // Registers the tasks with the scheduler, releasing now. Nothing allocates after this.
+  Status start();
+  // Runs the tasks that are due; returns how many ran.
+  std::size_t poll();
+  TimeUs next_release() const { return scheduler_.next_release(); }
+  // Level 3: rebuilds the scan matcher's local map if a key scan is waiting.
+  void background_step();
+
+  const NavState& nav() const { return nav_; }
+  const GuidanceSetpoint& setpoint() const { return setpoint_; }
+  const AttitudeSetpoint& command() const { return command_; }
+  uint32_t control_flags() const { return control_flags_; }
+  const scan_matching::ScanMatch& last_match() const { return last_match_; }
+  bool new_match() const { return new_match_; }  // true during the poll that produced it
+  const mission::MissionController& mission() const { return mission_; }
+  const exploration::Explorer* explorer() const { return explorer_; }
+  const estimation::NavFilter& filter() const { return filter_; }
+  const scan_matching::ScanMatcher& matcher() const { return matcher_; }
+  const Scheduler& scheduler() const { return scheduler_; }
+  const StackCounters& counters() const { return counters_; }
+  bool finished() const { return mission_.finished(); }
+
+ private:
+  static void run_imu(void* self, TimeUs release);
+  static void run_scan_match(void* self, TimeUs release);
+  static void run_guidance(void* self, TimeUs release);
+  static void run_control(void* self, TimeUs release);
+  void imu_task();
+  void scan_task();
+  void guidance_task(TimeUs now);
+  void control_task(TimeUs now);
+
+  Devices dev_;
+  StackConfig config_;
+  Scheduler scheduler_;
+  const char* configure_error_ = "";
+  bool configured_ = false;
+  bool started_ = false;
+
+  scan_matching::OnboardMapStorage maps_;
+  scan_matching::ScanMatcher matcher_;
+  estimation::NavFilter filter_;
+  control::Controller controller_;
+  mission::MissionController mission_;
+  exploration::BlendExplorer blend_;
+  exploration::WallFollowExplorer wallfollow_;
+  exploration::SrtExplorer srt_;
+  exploration::Explorer* explorer_ = nullptr;
+
+  LaserScan scan_;             // the scan being matched
+  LaserScan guidance_scan_;    // the newest matched scan, for the explorer
+  bool guidance_scan_fresh_ = false;
+  mission::ExplorerOutput explorer_out_;  // the explorer's newest set-point
+  scan_matching::ScanMatch last_match_;
+  bool new_match_ = false;
+  NavState nav_;
+  GuidanceSetpoint setpoint_;
+  AttitudeSetpoint command_;
+  uint32_t control_flags_ = 0;
+  bool armed_ = false;
+  StackCounters counters_;
+};
+
+}  // namespace kestrel::autonomy

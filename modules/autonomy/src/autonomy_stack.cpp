@@ -1,0 +1,177 @@
+#include "kestrel/autonomy/autonomy_stack.hpp"
+
+namespace kestrel::autonomy {
+
+AutonomyStack::AutonomyStack(const Devices& devices, const TimeSource& exec_clock)
+    : dev_(devices),
+      scheduler_(devices.clock, exec_clock),
+      matcher_(scan_matching::Params{}, maps_.map_a, maps_.map_b, /*synchronous=*/false) {}
+
+Status AutonomyStack::configure(const StackConfig& c) {
+  configured_ = false;
+  if (started_) {
+    configure_error_ = "the stack is running";
+    return Status::kUnsupported;
+  }
+  config_ = c;
+  if (matcher_.configure(c.matcher, c.home) != Status::kOk) {
+    configure_error_ = "scan matcher parameters";
+    return Status::kInvalidArgument;
+  }
+  if (filter_.set_params(c.ekf) != Status::kOk) {
+    configure_error_ = "EKF parameters";
+    return Status::kInvalidArgument;
+  }
+  if (controller_.set_params(c.controller) != Status::kOk) {
+    configure_error_ = "controller parameters";
+    return Status::kInvalidArgument;
+  }
+  if (mission_.configure(c.mission_kind, c.mission, &c.waypoints) != Status::kOk) {
+    configure_error_ = "mission parameters or waypoints";
+    return Status::kInvalidArgument;
+  }
+  explorer_ = nullptr;
+  if (c.mission_kind == mission::MissionKind::kExplore) {
+    const hal::LaserGeometry g = dev_.laser.geometry();
+    const exploration::BeamGeometry beams{g.beam_count, g.first_angle_rad, g.angle_step_rad, g.max_range_mm};
+    switch (c.explorer_kind) {
+      case exploration::ExplorerKind::kBlend: explorer_ = &blend_; break;
+      case exploration::ExplorerKind::kWallFollow: explorer_ = &wallfollow_; break;
+      case exploration::ExplorerKind::kSrt: explorer_ = &srt_; break;
+    }
+    exploration::Params ep = c.explorer;
+    ep.guidance.altitude_m = c.mission.takeoff_altitude_m;
+    if (explorer_ == nullptr || explorer_->configure(ep, beams) != Status::kOk) {
+      configure_error_ = "explorer parameters or laser geometry";
+      explorer_ = nullptr;
+      return Status::kInvalidArgument;
+    }
+  }
+  configure_error_ = "";
+  configured_ = true;
+  return Status::kOk;
+}
+
+Status AutonomyStack::start() {
+  if (!configured_) return Status::kNotFound;
+  if (started_) return Status::kOk;
+  const TimeUs now = dev_.clock.now();
+  const hal::LaserGeometry g = dev_.laser.geometry();
+  void (*const runners[])(void*, TimeUs) = {&run_imu, &run_scan_match, &run_guidance, &run_control};
+  for (const TaskRow& row : task_table(g.scan_period)) {
+    const TaskSpec spec{row.name, row.period, row.budget, runners[static_cast<int>(row.id)], this};
+    const Status s = scheduler_.add(spec, now);
+    if (s != Status::kOk) return s;
+  }
+  started_ = true;
+  return Status::kOk;
+}
+
+std::size_t AutonomyStack::poll() {
+  new_match_ = false;
+  return started_ ? scheduler_.poll() : 0;
+}
+
+void AutonomyStack::background_step() {
+  if (matcher_.local_map().rebuild() == Status::kOk) ++counters_.map_rebuilds;
+}
+
+void AutonomyStack::run_imu(void* self, TimeUs) { static_cast<AutonomyStack*>(self)->imu_task(); }
+void AutonomyStack::run_scan_match(void* self, TimeUs) { static_cast<AutonomyStack*>(self)->scan_task(); }
+void AutonomyStack::run_guidance(void* self, TimeUs release) {
+  static_cast<AutonomyStack*>(self)->guidance_task(release);
+}
+void AutonomyStack::run_control(void* self, TimeUs release) {
+  static_cast<AutonomyStack*>(self)->control_task(release);
+}
+
+void AutonomyStack::imu_task() {
+  // Attitude first: the filter rotates the samples that follow with it.
+  FlightStatus status;
+  if (dev_.autopilot.poll_status(status) == Status::kOk) filter_.set_attitude(status);
+
+  ImuSample s;
+  for (;;) {
+    const Status st = dev_.imu.poll(s);
+    if (st == Status::kNoData) break;
+    if (st != Status::kOk) {
+      ++counters_.device_errors;
+      break;
+    }
+    ++counters_.imu_samples;
+    const Status p = filter_.predict(s);
+    if (p != Status::kOk && p != Status::kNoData) ++counters_.imu_errors;
+  }
+  if (dev_.altimeter != nullptr) {
+    AltimeterSample a;
+    while (dev_.altimeter->poll(a) == Status::kOk) {
+      ++counters_.altitude_samples;
+      (void)filter_.update_altitude(a);  // rejections are counted by the filter
+    }
+  }
+  nav_ = filter_.state();
+}
+
+void AutonomyStack::scan_task() {
+  const Status st = dev_.laser.poll(scan_);
+  if (st == Status::kNoData) return;
+  if (st != Status::kOk) {
+    ++counters_.device_errors;
+    return;
+  }
+  ++counters_.scans;
+  last_match_ = matcher_.process(scan_);
+  new_match_ = true;
+  if (!last_match_.ok()) {
+    ++counters_.scans_rejected;
+    return;
+  }
+  ++counters_.scans_matched;
+  PoseMeasurement2 m = last_match_.measurement;
+  if (!config_.use_measurement_time) m.stamp = dev_.clock.now();
+  if (filter_.update_pose(m) == Status::kRejected) ++counters_.poses_gated;
+  nav_ = filter_.state();
+  guidance_scan_ = scan_;
+  guidance_scan_fresh_ = true;
+}
+
+void AutonomyStack::guidance_task(TimeUs now) {
+  // The explorer plans once per scan, on the newest one; between scans its set-point stands.
+  if (explorer_ != nullptr && guidance_scan_fresh_ && mission_.phase() == mission::Phase::kExplore) {
+    (void)explorer_->step(nav_, guidance_scan_, explorer_out_.setpoint);
+    explorer_out_.finished = explorer_->finished();
+    guidance_scan_fresh_ = false;
+    ++counters_.guidance_steps;
+  }
+  setpoint_ = mission_.step(now, nav_, explorer_ != nullptr ? &explorer_out_ : nullptr);
+}
+
+void AutonomyStack::control_task(TimeUs now) {
+  const bool want = mission_.wants_armed();
+  if (want != armed_) {
+    if (dev_.autopilot.arm(want) == Status::kOk) {
+      armed_ = want;
+    } else {
+      ++counters_.autopilot_errors;
+    }
+  }
+  if (!armed_) return;
+  control::ControlOutput out = controller_.step(nav_, setpoint_);
+  if (mission_.phase() == mission::Phase::kFailsafeLand && !nav_.valid) {
+    // Blind: the estimate cannot steer, so level the vehicle and let it sink gently, at a
+    // small constant downward acceleration, until the mission's descent timer ends.
+    constexpr float kBlindDescentAccel = -0.3f;  // m/s^2
+    out = controller_.safe_output(now, control::control_flag::kInvalidNav);
+    out.command.thrust = controller_.params().model.thrust.command_for(kBlindDescentAccel);
+  }
+  out.command.stamp = now;
+  command_ = out.command;
+  control_flags_ = out.flags;
+  if (dev_.autopilot.send(command_) == Status::kOk) {
+    ++counters_.setpoints_sent;
+  } else {
+    ++counters_.autopilot_errors;
+  }
+}
+
+}  // namespace kestrel::autonomy

@@ -1,0 +1,234 @@
+// kestrel-fw: the firmware application for a Linux board (Overo, Verdex) or the host.
+//
+//   kestrel-fw --hil HOST:PORT [--laser urg04lx|utm30lx] [--mission hover|explore] [options]
+//       every device through the simulator's HIL bridge (kestrel-sim --mission hil)
+//   kestrel-fw --hokuyo /dev/ttyACM0 --autopilot /dev/ttyS2 [--laser ...] [options]
+//       the Hokuyo on its own serial port (SCIP 2.0), IMU, altimeter and attitude autopilot
+//       through an autopilot-side bridge speaking the HIL framing on a serial port
+//
+// Start-up (parse, open devices, build the stack) may allocate; then the stack is armed and
+// the loop runs on the board's monotonic clock: pump the links, run due tasks, sleep until
+// the next release. The scan matcher's map rebuild runs on its own thread (level 3), so the
+// loop never waits for it. Exit status: 0 after the mission lands, 1 on a device failure,
+// 2 for a usage error.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "kestrel/autonomy/autonomy_stack.hpp"
+#include "kestrel/control/controller_params.hpp"
+#include "kestrel/estimation/ekf_params.hpp"
+#include "kestrel/platform/linux/hil_client.hpp"
+#include "kestrel/platform/linux/hokuyo_scip.hpp"
+#include "kestrel/platform/linux/linux_clock.hpp"
+#include "kestrel/platform/linux/serial_port.hpp"
+#include "kestrel/platform/linux/tcp_link.hpp"
+
+namespace {
+
+using namespace kestrel;
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop.store(true); }
+
+struct Options {
+  std::string hil;         // HOST:PORT
+  std::string hokuyo;      // serial device
+  std::string autopilot;   // serial device
+  int baud = 115200;
+  std::string laser = "utm30lx";
+  std::string mission = "hover";
+  std::string explorer = "blend";
+  std::string ekf_file, controller_file;
+  double hover_s = 60;
+  double max_s = 900;
+};
+
+int usage(const char* why) {
+  std::fprintf(stderr,
+               "kestrel-fw: %s\n"
+               "usage: kestrel-fw (--hil HOST:PORT | --hokuyo DEV --autopilot DEV [--baud N])\n"
+               "                  [--laser utm30lx|urg04lx] [--mission hover|explore] [--explorer blend|wallfollow|srt]\n"
+               "                  [--hover-s S] [--max-s S] [--ekf FILE] [--controller FILE]\n",
+               why);
+  return 2;
+}
+
+bool parse(int argc, char** argv, Options& o, std::string& err) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= argc) {
+        err = a + " needs a value";
+        return false;
+      }
+      out = argv[++i];
+      return true;
+    };
+    std::string v;
+    if (a == "--hil") {
+      if (!value(o.hil)) return false;
+    } else if (a == "--hokuyo") {
+      if (!value(o.hokuyo)) return false;
+    } else if (a == "--autopilot") {
+      if (!value(o.autopilot)) return false;
+    } else if (a == "--laser") {
+      if (!value(o.laser)) return false;
+      if (o.laser != "utm30lx" && o.laser != "urg04lx") return err = "unknown laser '" + o.laser + "'", false;
+    } else if (a == "--mission") {
+      if (!value(o.mission)) return false;
+      if (o.mission != "hover" && o.mission != "explore") return err = "unknown mission '" + o.mission + "'", false;
+    } else if (a == "--explorer") {
+      if (!value(o.explorer)) return false;
+    } else if (a == "--ekf") {
+      if (!value(o.ekf_file)) return false;
+    } else if (a == "--controller") {
+      if (!value(o.controller_file)) return false;
+    } else if (a == "--baud" || a == "--hover-s" || a == "--max-s") {
+      if (!value(v)) return false;
+      char* end = nullptr;
+      const double d = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(d > 0)) return err = a + ": '" + v + "' is not a positive number", false;
+      if (a == "--baud") o.baud = static_cast<int>(d);
+      if (a == "--hover-s") o.hover_s = d;
+      if (a == "--max-s") o.max_s = d;
+    } else {
+      err = "unknown option '" + a + "'";
+      return false;
+    }
+  }
+  if (o.hil.empty() == (o.hokuyo.empty() && o.autopilot.empty())) {
+    err = "give either --hil HOST:PORT or --hokuyo DEV and --autopilot DEV";
+    return false;
+  }
+  if (o.hil.empty() && (o.hokuyo.empty() || o.autopilot.empty())) {
+    err = "--hokuyo and --autopilot go together";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  std::string err;
+  if (!parse(argc, argv, opt, err)) return usage(err.c_str());
+
+  autonomy::StackConfig cfg;
+  cfg.mission_kind = opt.mission == "explore" ? mission::MissionKind::kExplore : mission::MissionKind::kHover;
+  cfg.mission.hover_duration_s = static_cast<float>(opt.hover_s);
+  const Result<exploration::ExplorerKind> kind = exploration::parse_explorer_kind(opt.explorer.c_str());
+  if (!kind.ok()) return usage(("unknown explorer '" + opt.explorer + "'").c_str());
+  cfg.explorer_kind = kind.value();
+  params::ParamError perr;
+  if (!opt.ekf_file.empty() && estimation::load_ekf_params(opt.ekf_file.c_str(), cfg.ekf, perr) != Status::kOk) {
+    std::fprintf(stderr, "kestrel-fw: %s:%d: %s\n", opt.ekf_file.c_str(), perr.line, perr.message);
+    return 2;
+  }
+  if (!opt.controller_file.empty() &&
+      control::load_controller_params(opt.controller_file.c_str(), cfg.controller, perr) != Status::kOk) {
+    std::fprintf(stderr, "kestrel-fw: %s:%d: %s\n", opt.controller_file.c_str(), perr.line, perr.message);
+    return 2;
+  }
+
+  static platform::LinuxClock clock;
+  const platform::HokuyoModel model =
+      opt.laser == "urg04lx" ? platform::HokuyoModel::urg04lx() : platform::HokuyoModel::utm30lx();
+
+  // Devices: every object lives for the whole run and is created before arming.
+  static platform::TcpLink tcp;
+  static platform::SerialPort hokuyo_port, autopilot_port;
+  hal::Link* autopilot_link = nullptr;
+  if (!opt.hil.empty()) {
+    const std::size_t colon = opt.hil.rfind(':');
+    if (colon == std::string::npos) return usage("--hil expects HOST:PORT");
+    const std::string host = opt.hil.substr(0, colon);
+    const int port = std::atoi(opt.hil.c_str() + colon + 1);
+    if (port <= 0 || port > 65535) return usage("--hil: bad port");
+    const Status s = tcp.connect(host.c_str(), static_cast<uint16_t>(port), Duration::from_s(5));
+    if (s != Status::kOk) {
+      std::fprintf(stderr, "kestrel-fw: cannot connect to the HIL bridge at %s: %s\n", opt.hil.c_str(), to_string(s));
+      return 1;
+    }
+    autopilot_link = &tcp;
+  } else {
+    if (hokuyo_port.open(opt.hokuyo.c_str(), opt.baud) != Status::kOk) {
+      std::fprintf(stderr, "kestrel-fw: cannot open the Hokuyo at %s\n", opt.hokuyo.c_str());
+      return 1;
+    }
+    if (autopilot_port.open(opt.autopilot.c_str(), opt.baud) != Status::kOk) {
+      std::fprintf(stderr, "kestrel-fw: cannot open the autopilot bridge at %s\n", opt.autopilot.c_str());
+      return 1;
+    }
+    autopilot_link = &autopilot_port;
+  }
+  static platform::HilClient bridge(*autopilot_link, model.geometry(), Duration::from_ms(5));
+  static platform::HokuyoScip hokuyo(hokuyo_port, clock, model);
+  hal::LaserScanner* laser = &bridge;
+  if (opt.hil.empty()) {
+    if (hokuyo.start() != Status::kOk) {
+      std::fprintf(stderr, "kestrel-fw: the Hokuyo did not take the scan request\n");
+      return 1;
+    }
+    laser = &hokuyo;
+  }
+
+  const autonomy::Devices devices{clock, *laser, bridge, &bridge, bridge};
+  auto stack = std::make_unique<autonomy::AutonomyStack>(devices, clock);
+  if (stack->configure(cfg) != Status::kOk) {
+    std::fprintf(stderr, "kestrel-fw: configuration rejected: %s\n", stack->configure_error());
+    return 2;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  // Level 3 on its own thread: it only ever touches the scan matcher's idle map buffer.
+  std::atomic<bool> run_background{true};
+  std::thread background([&] {
+    while (run_background.load()) {
+      stack->background_step();
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  });
+
+  int rc = 0;
+  if (stack->start() != Status::kOk) {
+    std::fprintf(stderr, "kestrel-fw: the loop could not start\n");
+    rc = 1;
+  }
+  const TimeUs t_end = clock.now() + Duration::from_s(opt.max_s);
+  while (rc == 0 && !g_stop.load() && !stack->finished() && clock.now() < t_end) {
+    if (bridge.pump() == Status::kClosed) {
+      std::fprintf(stderr, "kestrel-fw: the autopilot link closed\n");
+      rc = 1;
+      break;
+    }
+    if (opt.hil.empty() && hokuyo.pump() == Status::kClosed) {
+      std::fprintf(stderr, "kestrel-fw: the Hokuyo link closed\n");
+      rc = 1;
+      break;
+    }
+    stack->poll();
+    // Sleep until the next release, but wake at least every millisecond to read the links.
+    const TimeUs wake = std::min(stack->next_release(), clock.now() + Duration::from_ms(1));
+    (void)clock.sleep_until(wake);
+  }
+  run_background.store(false);
+  background.join();
+
+  const Scheduler& s = stack->scheduler();
+  std::fprintf(stderr, "kestrel-fw: mission %s, phase %s; scans %u matched %u\n",
+               stack->finished() ? "finished" : "stopped", mission::to_string(stack->mission().phase()),
+               stack->counters().scans, stack->counters().scans_matched);
+  for (std::size_t i = 0; i < s.task_count(); ++i)
+    std::fprintf(stderr, "  task %-10s runs %8llu  mean %8.1f us  max %8lld us  misses %llu\n", s.spec(i).name,
+                 static_cast<unsigned long long>(s.stats(i).runs), s.stats(i).mean_us(),
+                 static_cast<long long>(s.stats(i).max_us), static_cast<unsigned long long>(s.stats(i).deadline_misses()));
+  return rc;
+}
