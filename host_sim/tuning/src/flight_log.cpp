@@ -57,7 +57,8 @@ void tap_altimeter(sim::Simulation& s, FlightLog& log) {
   std::size_t n = 0;
   while (n < 64 && alt.poll(buf[n]) == Status::kOk) ++n;
   for (std::size_t i = 0; i < n; ++i) {
-    log.altitude.push_back(buf[i]);
+    // The stack may leave samples queued across ticks: record each one once.
+    if (log.altitude.empty() || buf[i].stamp > log.altitude.back().stamp) log.altitude.push_back(buf[i]);
     (void)alt.push(buf[i]);
   }
 }

@@ -6,6 +6,7 @@
 //   OUT/ekf_learned.params        the parameter file (estimation::load_ekf_params reads it)
 //   OUT/velocity_before_after.png truth vs estimate, hand-chosen vs learned (held-out run)
 // and, with --check-hover, flies the hover mission with both parameter sets.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -100,6 +101,19 @@ bool fly(const Options& o, tuning::FlightKind kind, uint64_t seed, const estimat
     std::fprintf(stderr, "kestrel-tune-ekf: seed %llu: %s\n", static_cast<unsigned long long>(seed), e.c_str());
     return false;
   }
+  // Sanity of the recording: the scan matcher's poses against the truth at their stamps.
+  double pose_err = 0, yaw_err = 0;
+  for (const PoseMeasurement2& p : log.poses) {
+    const std::size_t i = static_cast<std::size_t>((p.stamp - log.truth.front().stamp).us / 1000);
+    if (i >= log.truth.size()) continue;
+    const tuning::TruthRecord& t = log.truth[i];
+    pose_err += std::hypot(p.pose.x - t.position_m.x(), p.pose.y - t.position_m.y());
+    if (std::getenv("TUNE_DEBUG")) std::printf("DBG %.3f %.3f %.3f %.3f %.3f %.3f\n", p.stamp.seconds(), t.stamp.seconds(), p.pose.x, t.position_m.x(), p.pose.y, t.position_m.y());
+    yaw_err += std::abs(std::remainder(p.pose.theta - t.yaw_rad, 2 * M_PI));
+  }
+  if (!log.poses.empty())
+    std::printf("  seed %-4llu scan-matcher pose vs truth: mean %.4f m, %.4f rad\n", static_cast<unsigned long long>(seed),
+                pose_err / log.poses.size(), yaw_err / log.poses.size());
   std::printf("  seed %-4llu %s: %zu IMU, %zu poses, %zu heights, %s\n", static_cast<unsigned long long>(seed),
               kind == tuning::FlightKind::kHover ? "hover" : "waypoints", log.imu.size(), log.poses.size(),
               log.altitude.size(), log.end_message.c_str());
