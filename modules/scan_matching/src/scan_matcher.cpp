@@ -51,7 +51,7 @@ bool ScanMatcher::to_points(const LaserScan& scan) {
   return pts.count >= std::max<uint16_t>(params_.min_points, 2);
 }
 
-ScanMatch ScanMatcher::process(const LaserScan& scan) {
+ScanMatch ScanMatcher::process(const LaserScan& scan, const Pose2* prior) {
   using namespace match_flag;
   ScanMatch out;
   PoseMeasurement2& m = out.measurement;
@@ -114,8 +114,12 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   // can change completely between scans, and on the vehicle the growth is v * dt, a few cm.
   const float win_m0 = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
   const float win_rad0 = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
-  const float gx = 0.5f * (last_pose_.x - pred.x), gy = 0.5f * (last_pose_.y - pred.y);
-  const float gt = 0.5f * wrap_angle(last_pose_.theta - pred.theta);
+  if (prior != nullptr && prior->finite()) pred = *prior;
+  // Without a prior, the stopped hypothesis (the last pose) is searched too; a prior already
+  // says whether the vehicle stopped.
+  const float gx = prior != nullptr ? 0.0f : 0.5f * (last_pose_.x - pred.x);
+  const float gy = prior != nullptr ? 0.0f : 0.5f * (last_pose_.y - pred.y);
+  const float gt = prior != nullptr ? 0.0f : 0.5f * wrap_angle(last_pose_.theta - pred.theta);
   pred.x += gx;
   pred.y += gy;
   pred.theta = wrap_angle(pred.theta + gt);

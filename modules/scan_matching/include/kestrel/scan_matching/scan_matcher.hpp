@@ -50,7 +50,10 @@ class ScanMatcher {
   ScanMatcher(const Params& p, LikelihoodMap& a, LikelihoodMap& b, bool synchronous = true);
 
   Status configure(const Params& p, const Pose2& initial = {});
-  ScanMatch process(const LaserScan& scan);
+  // `prior`, when given, is the vehicle's pose at the scan's stamp as the caller's filter
+  // predicts it: the search is centred there instead of on the matcher's own constant-velocity
+  // prediction, which lets a match that was lost recover as soon as the scan fits again.
+  ScanMatch process(const LaserScan& scan, const Pose2* prior = nullptr);
 
   LocalMap& local_map() { return local_; }
   const Params& params() const { return params_; }
