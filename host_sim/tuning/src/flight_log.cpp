@@ -143,7 +143,10 @@ std::string fly_and_record(const FlightSpec& spec, FlightLog& log) {
     take_pose();
   }
   s.set_observer(nullptr);
-  if (autonomy != nullptr) log.hover_rms_m = autonomy->hover_rms_m();
+  if (autonomy != nullptr) {
+    log.hover_rms_m = autonomy->hover_rms_m();
+    log.poses_gated = autonomy->stack().counters().poses_gated;
+  }
   log.end_message = log.collided ? "collision" : state == sim::MissionState::kDone ? "done"
                                                : state == sim::MissionState::kFailed ? "failed: " + mission->failure()
                                                                                       : "time limit";

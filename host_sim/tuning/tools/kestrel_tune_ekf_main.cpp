@@ -108,15 +108,14 @@ bool fly(const Options& o, tuning::FlightKind kind, uint64_t seed, const estimat
     if (i >= log.truth.size()) continue;
     const tuning::TruthRecord& t = log.truth[i];
     pose_err += std::hypot(p.pose.x - t.position_m.x(), p.pose.y - t.position_m.y());
-    if (std::getenv("TUNE_DEBUG")) std::printf("DBG %.3f %.3f %.3f %.3f %.3f %.3f\n", p.stamp.seconds(), t.stamp.seconds(), p.pose.x, t.position_m.x(), p.pose.y, t.position_m.y());
     yaw_err += std::abs(std::remainder(p.pose.theta - t.yaw_rad, 2 * M_PI));
   }
   if (!log.poses.empty())
     std::printf("  seed %-4llu scan-matcher pose vs truth: mean %.4f m, %.4f rad\n", static_cast<unsigned long long>(seed),
                 pose_err / log.poses.size(), yaw_err / log.poses.size());
-  std::printf("  seed %-4llu %s: %zu IMU, %zu poses, %zu heights, %s\n", static_cast<unsigned long long>(seed),
-              kind == tuning::FlightKind::kHover ? "hover" : "waypoints", log.imu.size(), log.poses.size(),
-              log.altitude.size(), log.end_message.c_str());
+  std::printf("  seed %-4llu %s: %zu IMU, %zu poses (%u gated by the EKF), %zu heights, %s\n",
+              static_cast<unsigned long long>(seed), kind == tuning::FlightKind::kHover ? "hover" : "waypoints",
+              log.imu.size(), log.poses.size(), log.poses_gated, log.altitude.size(), log.end_message.c_str());
   return !log.collided && !log.poses.empty();
 }
 

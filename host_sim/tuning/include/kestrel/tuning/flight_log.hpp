@@ -59,6 +59,7 @@ struct FlightLog {
   std::vector<TruthRecord> truth;           // every physics step
   // Estimate against truth at every pose, as the stack flew it (hover score).
   double hover_rms_m = 0;
+  uint32_t poses_gated = 0;  // matched poses the stack's EKF gate refused
   bool collided = false;
   std::string end_message;
 };
