@@ -81,3 +81,22 @@ TEST(EkfTuning, LearningReducesHeldOutVelocityErrorAndTheFileLoadsBack) {
 
 }  // namespace
 }  // namespace kestrel::tuning
+
+namespace kestrel::tuning {
+namespace {
+
+TEST(EkfTuning, BlendLogMovesOnlyTheLearnableParametersGeometrically) {
+  estimation::EkfParams from, to;
+  to.accel_noise_xy = from.accel_noise_xy * 100.0f;
+  to.pose_cov_scale = from.pose_cov_scale / 4.0f;
+  to.pose_gate_chi2 = from.pose_gate_chi2 * 2.0f;  // not learnable: stays
+  const estimation::EkfParams half = blend_log(from, to, 0.5);
+  EXPECT_NEAR(half.accel_noise_xy, from.accel_noise_xy * 10.0f, 1e-4f * from.accel_noise_xy * 10.0f);
+  EXPECT_NEAR(half.pose_cov_scale, from.pose_cov_scale / 2.0f, 1e-5f);
+  EXPECT_EQ(half.pose_gate_chi2, from.pose_gate_chi2);
+  EXPECT_NEAR(blend_log(from, to, 1.0).accel_noise_xy, to.accel_noise_xy, 1e-4f * to.accel_noise_xy);
+  EXPECT_EQ(blend_log(from, to, 0.0).accel_noise_xy, from.accel_noise_xy);
+}
+
+}  // namespace
+}  // namespace kestrel::tuning

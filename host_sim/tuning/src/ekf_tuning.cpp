@@ -1,6 +1,8 @@
 #include "kestrel/tuning/ekf_tuning.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "kestrel/output/plot.hpp"
@@ -82,6 +84,20 @@ VelocityTrace truth_velocity(const estimation::RecordedRun& run) {
   for (const estimation::TruthSample& t : run.truth) {
     out.t_s.push_back((t.stamp - run.truth.front().stamp).seconds());
     out.velocity.push_back(t.velocity_mps.cast<double>());
+  }
+  return out;
+}
+
+estimation::EkfParams blend_log(const estimation::EkfParams& from, const estimation::EkfParams& to, double lambda) {
+  estimation::EkfParams out = from, target = to;
+  auto fo = estimation::ekf_param_fields(out);
+  auto ft = estimation::ekf_param_fields(target);
+  for (std::size_t i = 0; i < fo.size(); ++i) {
+    bool learnable = false;
+    for (const char* k : estimation::kLearnableParams) learnable = learnable || std::strcmp(k, fo[i].key) == 0;
+    if (!learnable || !(*fo[i].value > 0) || !(*ft[i].value > 0)) continue;
+    const double v = std::exp((1 - lambda) * std::log(*fo[i].value) + lambda * std::log(*ft[i].value));
+    *fo[i].value = std::clamp(static_cast<float>(v), fo[i].min, fo[i].max);
   }
   return out;
 }

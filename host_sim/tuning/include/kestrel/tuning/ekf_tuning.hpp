@@ -8,6 +8,7 @@
 //   RecordedRun RunData::run() const
 //   VelocityTrace trace_velocity(filter, params, run)
 //   Status write_velocity_plot(path, truth trace, before trace, after trace)
+//   EkfParams blend_log(from, to, lambda)
 #include <string>
 #include <vector>
 
@@ -36,6 +37,12 @@ struct VelocityTrace {
 VelocityTrace trace_velocity(estimation::NavFilter& filter, const estimation::EkfParams& params,
                              const estimation::RecordedRun& run);
 VelocityTrace truth_velocity(const estimation::RecordedRun& run);
+
+// The learnable parameters moved a fraction `lambda` of the way from `from` to `to` in log
+// space (lambda 1 = `to`, 0 = `from`); the others are taken from `from`. The replay objective
+// sees the filter alone, not the closed loop, so the tool shrinks a learned step this way
+// until the closed-loop hover accepts it.
+estimation::EkfParams blend_log(const estimation::EkfParams& from, const estimation::EkfParams& to, double lambda);
 
 // Figure 6b: one panel per horizontal axis (and z), truth, hand-chosen and learned estimates.
 Status write_velocity_plot(const std::string& path, const VelocityTrace& truth, const VelocityTrace& before,
