@@ -95,7 +95,7 @@ TEST(EkfTuning, BlendLogMovesOnlyTheLearnableParametersGeometrically) {
   EXPECT_NEAR(half.pose_cov_scale, from.pose_cov_scale / 2.0f, 1e-5f);
   EXPECT_EQ(half.pose_gate_chi2, from.pose_gate_chi2);
   EXPECT_NEAR(blend_log(from, to, 1.0).accel_noise_xy, to.accel_noise_xy, 1e-4f * to.accel_noise_xy);
-  EXPECT_EQ(blend_log(from, to, 0.0).accel_noise_xy, from.accel_noise_xy);
+  EXPECT_FLOAT_EQ(blend_log(from, to, 0.0).accel_noise_xy, from.accel_noise_xy);
 }
 
 }  // namespace
