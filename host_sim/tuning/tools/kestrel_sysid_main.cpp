@@ -16,6 +16,7 @@
 
 #include "kestrel/control/controller_params.hpp"
 #include "kestrel/params/param_file.hpp"
+#include "kestrel/sim/config_file.hpp"
 #include "kestrel/tuning/sysid.hpp"
 
 namespace {
@@ -25,6 +26,7 @@ using namespace kestrel;
 struct Options {
   std::string out = "sysid-out";
   std::string script;  // path; "" = the built-in excitation flight
+  std::string config;  // sim config file (vehicle.*, laser.*, imu.*, sim.*), as kestrel-sim --config
   bool waypoints = false;
   uint64_t seed = 1;
   double seconds = 0;  // 0: the script's length (manual) or 60 s (waypoints)
@@ -33,7 +35,8 @@ struct Options {
 
 void usage() {
   std::fprintf(stderr,
-               "usage: kestrel-sysid [--out DIR] [--script FILE | --waypoints] [--seed N] [--seconds S] [--dt S]\n");
+               "usage: kestrel-sysid [--out DIR] [--script FILE | --waypoints] [--seed N] [--seconds S] [--dt S]\n"
+               "                    [--config SIM_CONFIG_FILE]\n");
 }
 
 bool parse_args(int argc, char** argv, Options& o) {
@@ -49,6 +52,8 @@ bool parse_args(int argc, char** argv, Options& o) {
       o.waypoints = true;
     } else if (a == "--out" && value(v)) {
       o.out = v;
+    } else if (a == "--config" && value(v)) {
+      o.config = v;
     } else if (a == "--script" && value(v)) {
       o.script = v;
     } else if (a == "--seed" && value(v)) {
@@ -76,6 +81,15 @@ int main(int argc, char** argv) {
   }
   tuning::FlightSpec spec;
   spec.sim.seed = o.seed;
+  if (!o.config.empty()) {
+    sim::ConfigFile file;
+    std::string e = file.load(o.config);
+    if (e.empty()) e = spec.sim.apply(file);
+    if (!e.empty()) {
+      std::fprintf(stderr, "kestrel-sysid: %s\n", e.c_str());
+      return 1;
+    }
+  }
   if (o.waypoints) {
     spec.kind = tuning::FlightKind::kWaypoints;
     spec.waypoints = tuning::arena_waypoints();
