@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "kestrel/autonomy/stack_config.hpp"
 #include "kestrel/control/controller_params.hpp"
 #include "kestrel/params/param_file.hpp"
 #include "kestrel/tuning/sysid.hpp"
@@ -61,7 +62,7 @@ TEST(Sysid, ControllerFileFromTheFitLoadsBack) {
   const SysidResult r = identify_vehicle(log);
   ASSERT_EQ(r.status, Status::kOk);
   const Result<control::ControllerParams> d =
-      control::design_controller(r.model, control::LqrWeights{}, 0.025, control::default_controller_params());
+      control::design_controller(r.model, control::LqrWeights{}, 0.025, autonomy::vehicle_controller_params());
   ASSERT_TRUE(d.ok());
   control::ControllerParams p = d.value();
   EXPECT_GT(p.gain_x_p, 0.0f);

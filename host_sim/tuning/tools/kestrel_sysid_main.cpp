@@ -4,7 +4,8 @@
 // closed-loop waypoints mission instead), records the set-points the autopilot applied and
 // the true motion, fits the gains and offsets by least squares (control::fit_vehicle_model,
 // with the attitude loop's lag identified per axis), prints them against the simulator's
-// true VehicleParams, computes the LQR gains (control::design_controller) and writes
+// true VehicleParams, computes the LQR gains (control::design_controller; the command limits
+// are the ones the stack flies with, autonomy::vehicle_controller_params()) and writes
 //   OUT/controller.params   (control::load_controller_params reads it)
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include <sstream>
 #include <string>
 
+#include "kestrel/autonomy/stack_config.hpp"
 #include "kestrel/control/controller_params.hpp"
 #include "kestrel/params/param_file.hpp"
 #include "kestrel/sim/config_file.hpp"
@@ -137,13 +139,13 @@ int main(int argc, char** argv) {
               spec.sim.command_delay_s);
 
   const Result<control::ControllerParams> designed =
-      control::design_controller(r.model, control::LqrWeights{}, o.dt, control::default_controller_params());
+      control::design_controller(r.model, control::LqrWeights{}, o.dt, autonomy::vehicle_controller_params());
   if (!designed.ok()) {
     std::fprintf(stderr, "kestrel-sysid: LQR design failed: %s\n", to_string(designed.status()));
     return 1;
   }
   control::ControllerParams p = designed.value();
-  const control::ControllerParams d = control::default_controller_params();
+  const control::ControllerParams d = autonomy::vehicle_controller_params();
   std::printf("LQR gains (dt %.3f s, default weights), fitted model vs default model:\n", o.dt);
   std::printf("  gain_x_p %.4f (%.4f)  gain_x_d %.4f (%.4f)\n", p.gain_x_p, d.gain_x_p, p.gain_x_d, d.gain_x_d);
   std::printf("  gain_y_p %.4f (%.4f)  gain_y_d %.4f (%.4f)\n", p.gain_y_p, d.gain_y_p, p.gain_y_d, d.gain_y_d);
