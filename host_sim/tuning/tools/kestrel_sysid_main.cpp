@@ -1,0 +1,173 @@
+// kestrel-sysid: identifies paper 000 equation 1 from a logged simulator flight and designs
+// the LQR position controller for it (paper 000 section 4). It flies an excitation command
+// script open loop (the manual mission; --script FILE for another one, --waypoints for the
+// closed-loop waypoints mission instead), records the set-points the autopilot applied and
+// the true motion, fits the gains and offsets by least squares (control::fit_vehicle_model,
+// with the attitude loop's lag identified per axis), prints them against the simulator's
+// true VehicleParams, computes the LQR gains (control::design_controller; the command limits
+// are the ones the stack flies with, autonomy::vehicle_controller_params()) and writes
+//   OUT/controller.params   (control::load_controller_params reads it)
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "kestrel/autonomy/stack_config.hpp"
+#include "kestrel/control/controller_params.hpp"
+#include "kestrel/params/param_file.hpp"
+#include "kestrel/sim/config_file.hpp"
+#include "kestrel/tuning/sysid.hpp"
+
+namespace {
+
+using namespace kestrel;
+
+struct Options {
+  std::string out = "sysid-out";
+  std::string script;  // path; "" = the built-in excitation flight
+  std::string config;  // sim config file (vehicle.*, laser.*, imu.*, sim.*), as kestrel-sim --config
+  bool waypoints = false;
+  uint64_t seed = 1;
+  double seconds = 0;  // 0: the script's length (manual) or 60 s (waypoints)
+  double dt = 0.025;   // controller period (the UTM-30LX scan period)
+};
+
+void usage() {
+  std::fprintf(stderr,
+               "usage: kestrel-sysid [--out DIR] [--script FILE | --waypoints] [--seed N] [--seconds S] [--dt S]\n"
+               "                    [--config SIM_CONFIG_FILE]\n");
+}
+
+bool parse_args(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](std::string& v) {
+      if (i + 1 >= argc) return false;
+      v = argv[++i];
+      return true;
+    };
+    std::string v;
+    if (a == "--waypoints") {
+      o.waypoints = true;
+    } else if (a == "--out" && value(v)) {
+      o.out = v;
+    } else if (a == "--config" && value(v)) {
+      o.config = v;
+    } else if (a == "--script" && value(v)) {
+      o.script = v;
+    } else if (a == "--seed" && value(v)) {
+      o.seed = std::strtoull(v.c_str(), nullptr, 10);
+    } else if (a == "--seconds" && value(v)) {
+      o.seconds = std::atof(v.c_str());
+      if (!(o.seconds > 0)) return false;
+    } else if (a == "--dt" && value(v)) {
+      o.dt = std::atof(v.c_str());
+      if (!(o.dt > 0 && o.dt < 1)) return false;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (!parse_args(argc, argv, o)) {
+    usage();
+    return 2;
+  }
+  tuning::FlightSpec spec;
+  spec.sim.seed = o.seed;
+  if (!o.config.empty()) {
+    sim::ConfigFile file;
+    std::string e = file.load(o.config);
+    if (e.empty()) e = spec.sim.apply(file);
+    if (!e.empty()) {
+      std::fprintf(stderr, "kestrel-sysid: %s\n", e.c_str());
+      return 1;
+    }
+  }
+  if (o.waypoints) {
+    spec.kind = tuning::FlightKind::kWaypoints;
+    spec.waypoints = tuning::arena_waypoints();
+    spec.duration_s = o.seconds > 0 ? o.seconds : 60;
+  } else {
+    spec.kind = tuning::FlightKind::kManual;
+    if (o.script.empty()) {
+      spec.script_text = tuning::sysid_script_text();
+    } else {
+      std::ifstream in(o.script);
+      if (!in) {
+        std::fprintf(stderr, "kestrel-sysid: cannot read %s\n", o.script.c_str());
+        return 1;
+      }
+      std::stringstream ss;
+      ss << in.rdbuf();
+      spec.script_text = ss.str();
+    }
+    spec.duration_s = o.seconds > 0 ? o.seconds : 14;
+  }
+  tuning::FlightLog log;
+  if (const std::string e = tuning::fly_and_record(spec, log); !e.empty()) {
+    std::fprintf(stderr, "kestrel-sysid: %s\n", e.c_str());
+    return 1;
+  }
+  std::printf("flight: %zu physics steps, %s\n", log.truth.size(), log.end_message.c_str());
+  const tuning::SysidResult r = tuning::identify_vehicle(log);
+  if (r.status != Status::kOk) {
+    std::fprintf(stderr, "kestrel-sysid: the fit failed: %s (does the flight excite every axis?)\n",
+                 to_string(r.status));
+    return 1;
+  }
+  const sim::VehicleParams& t = spec.sim.vehicle;
+  std::printf("equation 1 fit (%zu samples):\n", r.samples);
+  std::printf("  %-7s %10s %10s %10s %10s %9s %12s %12s\n", "axis", "k fitted", "k true", "b fitted", "b true",
+              "lag (s)", "rms no lag", "rms at lag");
+  const char* names[4] = {"pitch", "roll", "thrust", "yaw"};
+  const control::AxisModel* fitted[4] = {&r.model.pitch, &r.model.roll, &r.model.thrust, &r.model.yaw};
+  const double k_true[4] = {t.k_pitch, t.k_roll, t.k_thrust, t.k_yaw};
+  const double b_true[4] = {t.b_pitch, t.b_roll, t.b_thrust, t.b_yaw};
+  for (int a = 0; a < 4; ++a)
+    std::printf("  %-7s %10.4f %10.4f %10.4f %10.4f %9.3f %12.4f %12.4f\n", names[a], fitted[a]->k, k_true[a],
+                fitted[a]->b, b_true[a], r.lag_s[a], r.rms_no_lag[a], r.rms[a]);
+  std::printf("  simulator attitude lag (vehicle.attitude_tau_s): %.3f s, command delay %.3f s\n", t.attitude_tau_s,
+              spec.sim.command_delay_s);
+
+  const Result<control::ControllerParams> designed =
+      control::design_controller(r.model, control::LqrWeights{}, o.dt, autonomy::vehicle_controller_params());
+  if (!designed.ok()) {
+    std::fprintf(stderr, "kestrel-sysid: LQR design failed: %s\n", to_string(designed.status()));
+    return 1;
+  }
+  control::ControllerParams p = designed.value();
+  const control::ControllerParams d = autonomy::vehicle_controller_params();
+  std::printf("LQR gains (dt %.3f s, default weights), fitted model vs default model:\n", o.dt);
+  std::printf("  gain_x_p %.4f (%.4f)  gain_x_d %.4f (%.4f)\n", p.gain_x_p, d.gain_x_p, p.gain_x_d, d.gain_x_d);
+  std::printf("  gain_y_p %.4f (%.4f)  gain_y_d %.4f (%.4f)\n", p.gain_y_p, d.gain_y_p, p.gain_y_d, d.gain_y_d);
+  std::printf("  gain_z_p %.4f (%.4f)  gain_z_d %.4f (%.4f)\n", p.gain_z_p, d.gain_z_p, p.gain_z_d, d.gain_z_d);
+  std::printf("  gain_yaw %.4f (%.4f)  hover thrust %.4f (%.4f)\n", p.gain_yaw, d.gain_yaw, p.model.hover_thrust(),
+              d.model.hover_thrust());
+
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  const std::string path = o.out + "/controller.params";
+  params::ParamError perr;
+  if (params::save_params_file(path.c_str(), control::controller_param_fields(p),
+                               "controller parameters identified by kestrel-sysid", perr) != Status::kOk) {
+    std::fprintf(stderr, "kestrel-sysid: %s: %s\n", path.c_str(), perr.message);
+    return 1;
+  }
+  control::ControllerParams back;
+  if (control::load_controller_params(path.c_str(), back, perr) != Status::kOk) {
+    std::fprintf(stderr, "kestrel-sysid: %s does not load back: line %d: %s\n", path.c_str(), perr.line,
+                 perr.message);
+    return 1;
+  }
+  std::printf("wrote %s\n", path.c_str());
+  return 0;
+}
