@@ -11,5 +11,5 @@ cmake --preset host > /dev/null
 cmake --build --preset host -j "$(nproc)"
 mkdir -p "$out"
 ./build/host/host_sim/tools/kestrel-sim --world iarc-arena --laser utm30lx --mission explore \
-  --seed 1 --out "$out"
+  --duration 600 --seed 1 --out "$out"
 echo "outputs in $out/: $(ls "$out" | tr '\n' ' ')"
