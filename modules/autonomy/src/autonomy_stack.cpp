@@ -120,7 +120,16 @@ void AutonomyStack::scan_task() {
     return;
   }
   ++counters_.scans;
-  last_match_ = matcher_.process(scan_);
+  // The filter's pose at the scan's stamp centres the matcher's window (see ScanMatcher):
+  // it carries the motion along a corridor that the scan alone cannot see.
+  if (nav_.valid) {
+    const float back = static_cast<float>((nav_.stamp - scan_.stamp).seconds());
+    const Pose2 predicted{nav_.position_m.x() - nav_.velocity_mps.x() * back,
+                          nav_.position_m.y() - nav_.velocity_mps.y() * back, nav_.heading_rad};
+    last_match_ = matcher_.process(scan_, predicted);
+  } else {
+    last_match_ = matcher_.process(scan_);
+  }
   new_match_ = true;
   if (!last_match_.ok()) {
     ++counters_.scans_rejected;

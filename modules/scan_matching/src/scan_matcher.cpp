@@ -51,7 +51,13 @@ bool ScanMatcher::to_points(const LaserScan& scan) {
   return pts.count >= std::max<uint16_t>(params_.min_points, 2);
 }
 
-ScanMatch ScanMatcher::process(const LaserScan& scan) {
+ScanMatch ScanMatcher::process(const LaserScan& scan) { return match(scan, nullptr); }
+
+ScanMatch ScanMatcher::process(const LaserScan& scan, const Pose2& predicted) {
+  return match(scan, predicted.finite() ? &predicted : nullptr);
+}
+
+ScanMatch ScanMatcher::match(const LaserScan& scan, const Pose2* predicted) {
   using namespace match_flag;
   ScanMatch out;
   PoseMeasurement2& m = out.measurement;
@@ -103,7 +109,9 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   const float dt = static_cast<float>((scan.stamp - last_stamp_).seconds());
   const float dt_prev = static_cast<float>((last_stamp_ - prev_stamp_).seconds());
   Pose2 pred = last_pose_;
-  if (accepted_ >= 2 && dt_prev > 1e-4f) {
+  if (predicted != nullptr) {
+    pred = *predicted;
+  } else if (accepted_ >= 2 && dt_prev > 1e-4f) {
     const float f = std::min(dt / dt_prev, 2.0f);
     pred.x += (last_pose_.x - prev_pose_.x) * f;
     pred.y += (last_pose_.y - prev_pose_.y) * f;
@@ -114,8 +122,10 @@ ScanMatch ScanMatcher::process(const LaserScan& scan) {
   // can change completely between scans, and on the vehicle the growth is v * dt, a few cm.
   const float win_m0 = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
   const float win_rad0 = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
-  const float gx = 0.5f * (last_pose_.x - pred.x), gy = 0.5f * (last_pose_.y - pred.y);
-  const float gt = 0.5f * wrap_angle(last_pose_.theta - pred.theta);
+  // An external prediction already accounts for the vehicle stopping: no growth.
+  const float grow = predicted != nullptr ? 0.0f : 0.5f;
+  const float gx = grow * (last_pose_.x - pred.x), gy = grow * (last_pose_.y - pred.y);
+  const float gt = grow * wrap_angle(last_pose_.theta - pred.theta);
   pred.x += gx;
   pred.y += gy;
   pred.theta = wrap_angle(pred.theta + gt);
