@@ -37,3 +37,24 @@ TEST(ConfigFile, ErrorsNameTheLine) {
 
 }  // namespace
 }  // namespace kestrel::sim
+
+namespace kestrel::sim {
+namespace {
+
+TEST(ConfigFile, ShippedExampleHoldsEveryDefault) {
+  ConfigFile f;
+  ASSERT_EQ(f.load(std::string(KESTREL_SOURCE_DIR) + "/host_sim/sim/configs/hummingbird.cfg"), "");
+  SimConfig cfg;
+  ASSERT_EQ(cfg.apply(f), "");
+  const SimConfig defaults;
+  EXPECT_EQ(f.entries().size(), VehicleParams::kBindingCount + LaserParams::kBindingCount + ImuParams::kBindingCount + 4);
+  EXPECT_DOUBLE_EQ(cfg.vehicle.k_thrust, defaults.vehicle.k_thrust);
+  EXPECT_DOUBLE_EQ(cfg.vehicle.attitude_tau_s, defaults.vehicle.attitude_tau_s);
+  EXPECT_DOUBLE_EQ(cfg.laser.first_angle_rad, defaults.laser.first_angle_rad);
+  EXPECT_DOUBLE_EQ(cfg.laser.deflected_beams, defaults.laser.deflected_beams);
+  EXPECT_DOUBLE_EQ(cfg.imu.accel_bias_std, defaults.imu.accel_bias_std);
+  EXPECT_DOUBLE_EQ(cfg.command_delay_s, defaults.command_delay_s);
+}
+
+}  // namespace
+}  // namespace kestrel::sim

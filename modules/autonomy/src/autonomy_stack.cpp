@@ -120,16 +120,17 @@ void AutonomyStack::scan_task() {
     return;
   }
   ++counters_.scans;
-  // The filter's pose at the scan's stamp centres the matcher's window (see ScanMatcher):
-  // it carries the motion along a corridor that the scan alone cannot see.
+  // Centre the search on the filter's pose at the scan's time: the IMU carries it through a
+  // turn or a lost match, where the matcher's own constant-velocity guess would not.
+  Pose2 prior;
+  const Pose2* prior_ptr = nullptr;
   if (nav_.valid) {
     const float back = static_cast<float>((nav_.stamp - scan_.stamp).seconds());
-    const Pose2 predicted{nav_.position_m.x() - nav_.velocity_mps.x() * back,
-                          nav_.position_m.y() - nav_.velocity_mps.y() * back, nav_.heading_rad};
-    last_match_ = matcher_.process(scan_, predicted);
-  } else {
-    last_match_ = matcher_.process(scan_);
+    prior = Pose2{nav_.position_m.x() - nav_.velocity_mps.x() * back, nav_.position_m.y() - nav_.velocity_mps.y() * back,
+                  wrap_angle(nav_.heading_rad - nav_.yaw_rate_radps * back)};
+    prior_ptr = &prior;
   }
+  last_match_ = matcher_.process(scan_, prior_ptr);
   new_match_ = true;
   if (!last_match_.ok()) {
     ++counters_.scans_rejected;

@@ -164,11 +164,22 @@ void CorrelativeSearch::dfs(int k, int32_t root_bound, GridPose& best) {
       kids[nk++] = {tx, ty, b, static_cast<int8_t>(level)};
     }
     // Push the best bound last so it is explored first; equal bounds keep (y, x) order.
-    std::sort(kids, kids + nk, [](const Node& a, const Node& b) {
+    // Insertion sort: at most four children (and std::sort on a 4-array trips GCC 12's
+    // array-bounds analysis under the sanitizers).
+    const auto before = [](const Node& a, const Node& b) {
       if (a.bound != b.bound) return a.bound < b.bound;
       if (a.ty != b.ty) return a.ty > b.ty;
       return a.tx > b.tx;
-    });
+    };
+    for (int i = 1; i < nk; ++i) {
+      const Node key = kids[i];
+      int j = i - 1;
+      while (j >= 0 && before(key, kids[j])) {
+        kids[j + 1] = kids[j];
+        --j;
+      }
+      kids[j + 1] = key;
+    }
     for (int c = 0; c < nk; ++c) stack_[top++] = kids[c];
   }
 }

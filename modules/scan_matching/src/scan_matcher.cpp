@@ -51,13 +51,7 @@ bool ScanMatcher::to_points(const LaserScan& scan) {
   return pts.count >= std::max<uint16_t>(params_.min_points, 2);
 }
 
-ScanMatch ScanMatcher::process(const LaserScan& scan) { return match(scan, nullptr); }
-
-ScanMatch ScanMatcher::process(const LaserScan& scan, const Pose2& predicted) {
-  return match(scan, predicted.finite() ? &predicted : nullptr);
-}
-
-ScanMatch ScanMatcher::match(const LaserScan& scan, const Pose2* predicted) {
+ScanMatch ScanMatcher::process(const LaserScan& scan, const Pose2* prior) {
   using namespace match_flag;
   ScanMatch out;
   PoseMeasurement2& m = out.measurement;
@@ -109,9 +103,7 @@ ScanMatch ScanMatcher::match(const LaserScan& scan, const Pose2* predicted) {
   const float dt = static_cast<float>((scan.stamp - last_stamp_).seconds());
   const float dt_prev = static_cast<float>((last_stamp_ - prev_stamp_).seconds());
   Pose2 pred = last_pose_;
-  if (predicted != nullptr) {
-    pred = *predicted;
-  } else if (accepted_ >= 2 && dt_prev > 1e-4f) {
+  if (accepted_ >= 2 && dt_prev > 1e-4f) {
     const float f = std::min(dt / dt_prev, 2.0f);
     pred.x += (last_pose_.x - prev_pose_.x) * f;
     pred.y += (last_pose_.y - prev_pose_.y) * f;
@@ -122,10 +114,12 @@ ScanMatch ScanMatcher::match(const LaserScan& scan, const Pose2* predicted) {
   // can change completely between scans, and on the vehicle the growth is v * dt, a few cm.
   const float win_m0 = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
   const float win_rad0 = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
-  // An external prediction already accounts for the vehicle stopping: no growth.
-  const float grow = predicted != nullptr ? 0.0f : 0.5f;
-  const float gx = grow * (last_pose_.x - pred.x), gy = grow * (last_pose_.y - pred.y);
-  const float gt = grow * wrap_angle(last_pose_.theta - pred.theta);
+  if (prior != nullptr && prior->finite()) pred = *prior;
+  // Without a prior, the stopped hypothesis (the last pose) is searched too; a prior already
+  // says whether the vehicle stopped.
+  const float gx = prior != nullptr ? 0.0f : 0.5f * (last_pose_.x - pred.x);
+  const float gy = prior != nullptr ? 0.0f : 0.5f * (last_pose_.y - pred.y);
+  const float gt = prior != nullptr ? 0.0f : 0.5f * wrap_angle(last_pose_.theta - pred.theta);
   pred.x += gx;
   pred.y += gy;
   pred.theta = wrap_angle(pred.theta + gt);

@@ -50,14 +50,10 @@ class ScanMatcher {
   ScanMatcher(const Params& p, LikelihoodMap& a, LikelihoodMap& b, bool synchronous = true);
 
   Status configure(const Params& p, const Pose2& initial = {});
-  ScanMatch process(const LaserScan& scan);
-  // The same, with the window centred on `predicted` (the navigation filter's pose at the
-  // scan's stamp) instead of the constant-velocity guess. Along a corridor the scans cannot
-  // tell where the vehicle is, and the match is wherever the window's centre puts it: the
-  // filter, which integrates the accelerometers, knows better than the matcher's own last
-  // two poses (which then stay put while the vehicle moves on). A non-finite prediction is
-  // ignored.
-  ScanMatch process(const LaserScan& scan, const Pose2& predicted);
+  // `prior`, when given, is the vehicle's pose at the scan's stamp as the caller's filter
+  // predicts it: the search is centred there instead of on the matcher's own constant-velocity
+  // prediction, which lets a match that was lost recover as soon as the scan fits again.
+  ScanMatch process(const LaserScan& scan, const Pose2* prior = nullptr);
 
   LocalMap& local_map() { return local_; }
   const Params& params() const { return params_; }
@@ -65,7 +61,6 @@ class ScanMatcher {
 
  private:
   bool to_points(const LaserScan& scan);
-  ScanMatch match(const LaserScan& scan, const Pose2* predicted);
 
   Params params_;
   bool synchronous_;
