@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   FlightRecorder rec(sim.world(), sim.free_space(), Duration::from_s(opt.duration_s));
   SimObserverList observers;
   observers.add(&rec);
+  mission->set_recorder(&rec);
   CarmenRecorder carmen;
   const std::string log_path = opt.out_dir + "/sim.log";
   if (opt.record) {

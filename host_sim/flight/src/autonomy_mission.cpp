@@ -9,6 +9,7 @@
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/output/plot.hpp"
 #include "kestrel/output/tum_writer.hpp"
+#include "kestrel/sim/flight_recorder.hpp"
 #include "kestrel/sim/simulation.hpp"
 #if defined(KESTREL_HAS_PNG)
 #include "kestrel/output/png_writer.hpp"
@@ -279,6 +280,24 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
        {"velocity y", "m/s", {tvy, evy}}},
       "time [s]", 1100, 230);
   if (output::write_png(dir + "/estimate_vs_truth.png", plot) != Status::kOk) return Status::kIoError;
+  if (options_.kind == mission::MissionKind::kExplore && recorder() != nullptr) {
+    // Issue 6: coverage of the reachable free area against time, with the 90 % line that
+    // coverage_t90_s reports crossing.
+    const sim::FlightRecorder& rec = *recorder();
+    const char* kind = stack_ && stack_->explorer() ? exploration::to_string(stack_->explorer()->kind()) : "explore";
+    output::Series cov{std::string("coverage (") + kind + ")", output::colors::kBlue, {}, {}};
+    output::Series ninety{"90 %", output::colors::kGrey, {}, {}};
+    for (const sim::FlightRecorder::CoverageSample& c : rec.coverage_series()) {
+      cov.x.push_back(c.t_s);
+      cov.y.push_back(100.0 * c.coverage);
+    }
+    if (!cov.x.empty()) {
+      ninety.x = {0.0, cov.x.back()};
+      ninety.y = {90.0, 90.0};
+    }
+    const output::Canvas cplot = output::plot_panels({{"coverage of the reachable area", "%", {cov, ninety}}}, "time [s]", 1000, 360);
+    if (output::write_png(dir + "/coverage_vs_time.png", cplot) != Status::kOk) return Status::kIoError;
+  }
 #endif
   return Status::kOk;
 }

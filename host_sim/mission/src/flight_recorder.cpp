@@ -10,6 +10,7 @@ FlightRecorder::FlightRecorder(const World& world, const FreeSpaceMap& free_spac
   const double s = std::max(1.0, expected_duration.seconds());
   scan_truth_.reserve(static_cast<std::size_t>(s * 40 + 64));  // up to 40 Hz scans
   path_.reserve(static_cast<std::size_t>(s * 50 + 64));        // every 20 steps of 1 ms
+  coverage_series_.reserve(static_cast<std::size_t>(s / kCoveragePeriodS + 8));
   seen_.assign(static_cast<std::size_t>(free_.width()) * free_.height(), 0);
   room_entry_.assign(world_.rooms.size(), -1.0);
 }
@@ -63,7 +64,17 @@ void FlightRecorder::mark_beams(const LaserScan& scan, const VehicleState& truth
       }
     }
   }
-  if (t90_ < 0 && coverage() >= 0.9) t90_ = scan.stamp.seconds();
+  const double t = scan.stamp.seconds();
+  if (t90_ < 0 && coverage() >= 0.9) t90_ = t;
+  // The newest sample follows every update until the next period starts a new one; past the
+  // reserved length (a run longer than announced) the series stops growing instead of
+  // allocating in the loop.
+  if (t >= next_coverage_t_ && coverage_series_.size() < coverage_series_.capacity()) {
+    coverage_series_.push_back({t, coverage()});
+    next_coverage_t_ = (std::floor(t / kCoveragePeriodS) + 1.0) * kCoveragePeriodS;
+  } else if (!coverage_series_.empty()) {
+    coverage_series_.back() = {t, coverage()};
+  }
 }
 
 double FlightRecorder::coverage() const {

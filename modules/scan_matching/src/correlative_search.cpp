@@ -83,6 +83,13 @@ int32_t CorrelativeSearch::score(int k, int tx, int ty) {
 
 bool CorrelativeSearch::better(const GridPose& a, const GridPose& b) {
   if (a.score != b.score) return a.score > b.score;
+  // Equal scores: the one nearest the prediction. Along a corridor the score is flat over the
+  // whole window, and a tie broken towards one corner (lowest k, ty, tx) drags every match
+  // that way: measured in closed loop, an estimate 0.1 m/s slower than the vehicle.
+  const int ak = std::abs(a.k), bk = std::abs(b.k);
+  if (ak != bk) return ak < bk;
+  const int ad = a.tx * a.tx + a.ty * a.ty, bd = b.tx * b.tx + b.ty * b.ty;
+  if (ad != bd) return ad < bd;
   if (a.k != b.k) return a.k < b.k;
   if (a.ty != b.ty) return a.ty < b.ty;
   return a.tx < b.tx;
@@ -117,7 +124,8 @@ GridPose CorrelativeSearch::exhaustive() {
     for (int uy = 0; uy < w; ++uy) {
       for (int ux = 0; ux < w; ++ux) {
         const int32_t v = acc_[static_cast<std::size_t>(uy * w + ux)];
-        if (v > best.score) best = {k, ux - h, uy - h, v};
+        const GridPose cand{k, ux - h, uy - h, v};
+        if (better(cand, best)) best = cand;
       }
     }
     nodes_ += static_cast<uint64_t>(w) * w;

@@ -3,7 +3,7 @@
 // the true pose at every scan (trajectory_truth.tum), a decimated true path (render.png), the
 // last scan, distance and speed, contacts, the rooms entered and the laser's coverage of the
 // world's reachable free area (metrics.json: coverage, coverage_t90_s, rooms_entered,
-// t_all_rooms_s). Coverage marks the free-space cells each beam crosses (every 4th beam of
+// t_all_rooms_s) and its history (coverage_vs_time.png: one sample a second). Coverage marks the free-space cells each beam crosses (every 4th beam of
 // every 4th scan, in 2D along the true heading) up to its return or the maximum range.
 #include <vector>
 
@@ -39,6 +39,14 @@ class FlightRecorder final : public SimObserver {
   double max_altitude_m() const { return max_z_; }
   double coverage() const;
   double coverage_t90_s() const { return t90_; }  // < 0 if never reached
+  struct CoverageSample {
+    double t_s;
+    double coverage;
+  };
+  // Coverage sampled when it is updated, at most once per kCoveragePeriodS (the first update
+  // at or after each whole period), plus the value at the newest update.
+  static constexpr double kCoveragePeriodS = 1.0;
+  const std::vector<CoverageSample>& coverage_series() const { return coverage_series_; }
   int rooms_entered() const;
   double t_all_rooms_s() const { return t_all_rooms_; }  // < 0 if never
   const std::vector<double>& room_entry_s() const { return room_entry_; }  // < 0: not entered
@@ -61,6 +69,8 @@ class FlightRecorder final : public SimObserver {
   uint64_t scans_ = 0, imu_samples_ = 0, steps_ = 0;
   double distance_ = 0, max_speed_ = 0, max_z_ = 0;
   double t90_ = -1;
+  std::vector<CoverageSample> coverage_series_;
+  double next_coverage_t_ = 0;
   std::vector<double> room_entry_;
   double t_all_rooms_ = -1;
 };

@@ -17,6 +17,7 @@
 namespace kestrel::sim {
 
 class Simulation;
+class FlightRecorder;
 
 enum class MissionState : uint8_t { kRunning, kDone, kFailed };
 
@@ -47,6 +48,15 @@ class Mission {
     output::Rgb color;
   };
   virtual std::vector<LegendRow> legend() const { return {}; }
+  // The tool's recorder of the flight (coverage and its history, rooms), set before start();
+  // write_outputs may read it. Null when the tool records nothing.
+  void set_recorder(const FlightRecorder* recorder) { recorder_ = recorder; }
+
+ protected:
+  const FlightRecorder* recorder() const { return recorder_; }
+
+ private:
+  const FlightRecorder* recorder_ = nullptr;
 };
 
 }  // namespace kestrel::sim

@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Sweep of kestrel-sim's explore mission (issue 6, paper 002 / paper 004 comparison).
+
+Runs `kestrel-sim --mission explore` for every world x laser x explorer x seed (at most
+--jobs at a time, under nice), keeps each run's outputs in OUT/<world>-<laser>-<explorer>-s<seed>,
+and prints two markdown tables: one row per run, then one row per (world, laser, explorer)
+with the aggregates the README reports (runs with every room entered, collisions, median
+t_all_rooms_s, mean coverage and coverage at fixed times from coverage_vs_time).
+
+Standard library only. Runs already present in OUT (metrics.json exists) are not re-run, so
+an interrupted sweep can be resumed and a table re-printed with --seeds and no runs.
+
+Example:
+  host_sim/flight/tools/explore_sweep.py --sim build/host/host_sim/tools/kestrel-sim \\
+      --out /tmp/sweep --worlds gt-building iarc-arena --lasers urg04lx utm30lx \\
+      --explorers blend wallfollow srt --seeds 1-10 --duration 600 --jobs 2
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+
+def parse_seeds(text):
+    seeds = []
+    for part in text.split(","):
+        if "-" in part:
+            a, b = part.split("-", 1)
+            seeds.extend(range(int(a), int(b) + 1))
+        elif part:
+            seeds.append(int(part))
+    return seeds
+
+
+def run_dir(out, world, laser, explorer, seed):
+    return os.path.join(out, f"{world}-{laser}-{explorer}-s{seed}")
+
+
+def run_one(args, world, laser, explorer, seed):
+    d = run_dir(args.out, world, laser, explorer, seed)
+    metrics = os.path.join(d, "metrics.json")
+    if not os.path.exists(metrics):
+        os.makedirs(d, exist_ok=True)
+        cmd = ["nice", "-n", "10", args.sim, "--world", world, "--laser", laser, "--mission", "explore",
+               "--explorer", explorer, "--duration", str(args.duration), "--seed", str(seed), "--out", d]
+        with open(os.path.join(d, "stderr.txt"), "w") as err:
+            subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=err, timeout=args.timeout, check=False)
+    try:
+        with open(metrics) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def fmt(v, digits=0, pct=False):
+    if v is None:
+        return "-"
+    if pct:
+        return f"{100 * v:.{digits}f} %"
+    return f"{v:.{digits}f}"
+
+
+def mmss(s):
+    if s is None:
+        return "-"
+    return f"{int(s) // 60}:{int(round(s)) % 60:02d}"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--sim", default="build/host/host_sim/tools/kestrel-sim")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--worlds", nargs="+", default=["gt-building", "iarc-arena"])
+    ap.add_argument("--lasers", nargs="+", default=["urg04lx", "utm30lx"])
+    ap.add_argument("--explorers", nargs="+", default=["blend", "wallfollow", "srt"])
+    ap.add_argument("--seeds", default="1-10")
+    ap.add_argument("--duration", type=int, default=600)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--timeout", type=int, default=3600, help="wall-clock seconds per run")
+    args = ap.parse_args()
+    seeds = parse_seeds(args.seeds)
+    combos = [(w, l, e, s) for w in args.worlds for l in args.lasers for e in args.explorers for s in seeds]
+    with ThreadPoolExecutor(max_workers=max(1, min(args.jobs, 2))) as pool:
+        results = list(pool.map(lambda c: (c, run_one(args, *c)), combos))
+
+    print("| world | laser | explorer | seed | end | coverage | t90 | rooms | all rooms at | collisions | distance m |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for (w, l, e, s), m in results:
+        if m is None:
+            print(f"| {w} | {l} | {e} | {s} | no metrics | | | | | | |")
+            continue
+        end = "finished" if m.get("mission_finished") else m.get("end_reason", "?")
+        print(f"| {w} | {l} | {e} | {s} | {end} | {fmt(m.get('coverage'), 1, True)} | "
+              f"{fmt(m.get('coverage_t90_s'))} | {m.get('rooms_entered')}/{m.get('rooms_total')} | "
+              f"{mmss(m.get('t_all_rooms_s'))} | {m.get('collisions')} | {fmt(m.get('distance_m'), 1)} |")
+
+    print()
+    print("| world | laser | explorer | runs | all rooms entered | collision-free | finished | "
+          "median all rooms at | mean coverage | median t90 s |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    groups = {}
+    for (w, l, e, s), m in results:
+        groups.setdefault((w, l, e), []).append(m)
+    for (w, l, e), ms in groups.items():
+        ms = [m for m in ms if m is not None]
+        n = len(ms)
+        if n == 0:
+            print(f"| {w} | {l} | {e} | 0 | | | | | | |")
+            continue
+        all_rooms = [m for m in ms if m.get("rooms_entered") == m.get("rooms_total")]
+        t_all = [m["t_all_rooms_s"] for m in ms if m.get("t_all_rooms_s") is not None]
+        t90 = [m["coverage_t90_s"] for m in ms if m.get("coverage_t90_s") is not None]
+        free = sum(1 for m in ms if m.get("collisions", 1) == 0)
+        fin = sum(1 for m in ms if m.get("mission_finished"))
+        cov = statistics.mean(m.get("coverage", 0.0) for m in ms)
+        print(f"| {w} | {l} | {e} | {n} | {len(all_rooms)}/{n} | {free}/{n} | {fin}/{n} | "
+              f"{mmss(statistics.median(t_all)) if t_all else '-'} | {fmt(cov, 1, True)} | "
+              f"{fmt(statistics.median(t90)) if t90 else '-'} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
