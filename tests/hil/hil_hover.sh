@@ -12,9 +12,11 @@ sim_pid=$!
 for _ in $(seq 50); do grep -q "waiting for kestrel-fw" "$out/sim.stderr" 2>/dev/null && break; sleep 0.1; done
 fw_rc=0
 "$fw" --hil 127.0.0.1:$port --mission hover --hover-s 5 --max-s 30 > "$out/fw.stderr" 2>&1 || fw_rc=$?
-wait $sim_pid || true
+sim_rc=0
+wait $sim_pid || sim_rc=$?
 cat "$out/fw.stderr"
 [ $fw_rc -eq 0 ] || { echo "kestrel-fw failed ($fw_rc)"; exit 1; }
+[ $sim_rc -eq 0 ] || { echo "kestrel-sim failed ($sim_rc)"; cat "$out/sim.stderr"; exit 1; }
 grep -q "mission finished, phase landed" "$out/fw.stderr" || { echo "the firmware did not land"; exit 1; }
 python3 - "$out/metrics.json" <<'PY'
 import json, sys

@@ -239,7 +239,9 @@ TEST(SimLaser, MirrorBeamsMeasureHeight) {
   EXPECT_NEAR(sum / n, 1.25, 0.003);
   // Without deflected beams there is no altimeter source.
   SimAltimeter none;
-  SimLaser urg(LaserParams::urg04lx(), rc, Rng(5), &none);
+  LaserParams no_mirror = LaserParams::urg04lx();
+  no_mirror.deflected_beams = 0;
+  SimLaser urg(no_mirror, rc, Rng(5), &none);
   EXPECT_FALSE(none.has_source());
   EXPECT_EQ(none.poll(a), Status::kNoData);
 }

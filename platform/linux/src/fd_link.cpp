@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -37,7 +38,10 @@ void FdLink::reset(int fd) {
 Result<std::size_t> FdLink::write(const uint8_t* data, std::size_t size) {
   if (fd_ < 0) return Status::kClosed;
   for (;;) {
-    const ssize_t n = ::write(fd_, data, size);
+    // A peer that went away must be an error value, not SIGPIPE killing the process: sockets
+    // are written with MSG_NOSIGNAL; other descriptors (serial lines) cannot raise it.
+    ssize_t n = ::send(fd_, data, size, MSG_NOSIGNAL);
+    if (n < 0 && errno == ENOTSOCK) n = ::write(fd_, data, size);
     if (n >= 0) return static_cast<std::size_t>(n);
     if (errno == EINTR) continue;
     if (errno == EAGAIN || errno == EWOULDBLOCK) return std::size_t{0};
