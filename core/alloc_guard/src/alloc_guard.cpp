@@ -32,15 +32,11 @@ bool active() { return true; }
 }  // namespace kestrel::alloc_guard
 
 #if defined(KESTREL_ALLOC_GUARD_SANITIZER)
-// AddressSanitizer owns malloc; it calls these hooks on every allocation it serves.
-extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*, size_t),
-                                                         void (*free_hook)(const volatile void*));
-namespace {
-void on_malloc(const volatile void*, size_t) { kestrel::alloc_guard::note_allocation(); }
-struct InstallHooks {
-  InstallHooks() { __sanitizer_install_malloc_and_free_hooks(on_malloc, nullptr); }
-} g_install_hooks;
-}  // namespace
+// AddressSanitizer owns malloc and calls this weak hook (a no-op unless a program defines
+// it) on every allocation it serves.
+extern "C" void __sanitizer_malloc_hook(const volatile void* /*ptr*/, size_t /*size*/) {
+  kestrel::alloc_guard::note_allocation();
+}
 #else
 // glibc: the program's definitions of the allocator entry points take precedence over libc's
 // (symbol interposition); each counts and forwards to glibc's own implementation.
