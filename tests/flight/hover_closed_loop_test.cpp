@@ -46,12 +46,17 @@ Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double h
 }
 
 #if KESTREL_FLIGHT_SHORT
-constexpr double kHoverS = 8;
+// Under qemu-arm (the Verdex's soft float especially) a simulated second costs tens of CPU
+// seconds: the ARM presets fly the URG-04LX hover only, and briefly.
+constexpr double kHoverS = 4;
+constexpr bool kShort = true;
 #else
 constexpr double kHoverS = 30;
+constexpr bool kShort = false;
 #endif
 
 TEST(HoverClosedLoop, Utm30lxHoldsTheSetPointWithinTwiceThePapersFigures) {
+  if (kShort) GTEST_SKIP() << "host preset only (the URG-04LX hover runs on ARM)";
   const Flight f = fly_hover(sim::LaserParams::utm30lx(), "iarc-arena", kHoverS);
   EXPECT_FALSE(f.run.collided);
   EXPECT_TRUE(f.finished) << "the mission did not land";
@@ -72,6 +77,7 @@ TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
 }
 
 TEST(HoverClosedLoop, LateScansAreAbsorbedByTheStateHistory) {
+  if (kShort) GTEST_SKIP() << "host preset only";
   const Flight f = fly_hover(sim::LaserParams::utm30lx(), "cluttered-lab", kHoverS, 0.2);
   EXPECT_FALSE(f.run.collided);
   EXPECT_LE(metric(f.metrics, "hover_rms_m"), 0.12);
