@@ -37,7 +37,15 @@ Status solve_dlqr(const Eigen::Matrix<double, N, N>& A, const Eigen::Matrix<doub
   for (int it = 0; it < options.max_iterations; ++it) {
     const Eigen::Matrix<double, M, M> S = R + B.transpose() * P * B;
     const Eigen::Matrix<double, M, N> BtPA = B.transpose() * P * A;
-    const Eigen::Matrix<double, M, N> Kn = S.llt().solve(BtPA);
+    // Column by column: a matrix right-hand side goes through Eigen's blocked triangular
+    // solve, whose scratch is an alloca of unbounded size on the stack (the budget checker
+    // refuses those); a vector right-hand side does not.
+    const Eigen::LLT<Eigen::Matrix<double, M, M>> llt(S);
+    Eigen::Matrix<double, M, N> Kn;
+    for (int c = 0; c < N; ++c) {
+      const Eigen::Matrix<double, M, 1> rhs = BtPA.col(c);
+      Kn.col(c) = llt.solve(rhs);
+    }
     Eigen::Matrix<double, N, N> Pn = Q + A.transpose() * P * A - BtPA.transpose() * Kn;
     Pn = 0.5 * (Pn + Pn.transpose());
     if (!Pn.allFinite() || Pn.norm() > 1e30) return Status::kNotFinite;
