@@ -180,7 +180,9 @@ int main(int argc, char** argv) {
   }
 
   const autonomy::Devices devices{clock, *laser, bridge, &bridge, bridge};
+  // The one large allocation, before arming: maps, filter history, explorer trees.
   auto stack = std::make_unique<autonomy::AutonomyStack>(devices, clock);
+  std::fprintf(stderr, "kestrel-fw: autonomy stack: %zu bytes allocated at start-up\n", sizeof(autonomy::AutonomyStack));
   if (stack->configure(cfg) != Status::kOk) {
     std::fprintf(stderr, "kestrel-fw: configuration rejected: %s\n", stack->configure_error());
     return 2;
