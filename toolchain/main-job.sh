@@ -12,7 +12,7 @@ cmake --build --preset host -j "$(nproc)"
 mkdir -p "$out"
 # Wall following is the explorer that flies the arena furthest without a collision today
 # (78 % coverage in 300 s); the blend of paper 002 still clips door frames and the arena's glass
-# window (README: "Exploration"). Pass another with --explorer to compare.
+# window (README: "Exploration"); run kestrel-sim with --explorer blend|srt to compare.
 ./build/host/host_sim/tools/kestrel-sim --world iarc-arena --laser utm30lx --mission explore \
   --explorer wallfollow --duration 300 --seed 1 --out "$out"
 echo "outputs in $out/: $(ls "$out" | tr '\n' ' ')"
