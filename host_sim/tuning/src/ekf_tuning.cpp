@@ -49,33 +49,11 @@ VelocityTrace trace_velocity(estimation::NavFilter& filter, const estimation::Ek
   VelocityTrace out;
   filter.reset();
   if (!ok(filter.set_params(params))) return out;
-  std::size_t i_imu = 0, i_att = 0, i_pose = 0, i_alt = 0;
-  const Duration lat = run.measurement_latency;
-  const TimeUs never{std::numeric_limits<int64_t>::max()};
-  for (const estimation::TruthSample& truth : run.truth) {
-    for (;;) {
-      const TimeUs t_att = i_att < run.attitude.size() ? run.attitude[i_att].stamp : never;
-      const TimeUs t_imu = i_imu < run.imu.size() ? run.imu[i_imu].stamp : never;
-      const TimeUs t_pose = i_pose < run.poses.size() ? run.poses[i_pose].stamp + lat : never;
-      const TimeUs t_alt = i_alt < run.altitude.size() ? run.altitude[i_alt].stamp + lat : never;
-      TimeUs next = t_att;
-      int which = 0;
-      if (t_imu < next) { next = t_imu; which = 1; }
-      if (t_pose < next) { next = t_pose; which = 2; }
-      if (t_alt < next) { next = t_alt; which = 3; }
-      if (next > truth.stamp) break;
-      switch (which) {
-        case 0: filter.set_attitude(run.attitude[i_att++]); break;
-        case 1: (void)filter.predict(run.imu[i_imu++]); break;
-        case 2: (void)filter.update_pose(run.poses[i_pose++]); break;
-        default: (void)filter.update_altitude(run.altitude[i_alt++]); break;
-      }
-    }
-    const NavState s = filter.state();
-    if (!s.valid) continue;
+  estimation::replay_run(filter, run, [&](const estimation::TruthSample& truth, const NavState& s) {
+    if (!s.valid) return;
     out.t_s.push_back((truth.stamp - run.truth.front().stamp).seconds());
     out.velocity.push_back(s.velocity_mps.cast<double>());
-  }
+  });
   return out;
 }
 

@@ -14,42 +14,18 @@ struct Accumulator {
 };
 
 void replay(NavFilter& filter, const RecordedRun& run, Accumulator& acc) {
-  std::size_t i_imu = 0, i_att = 0, i_pose = 0, i_alt = 0;
-  const Duration lat = run.measurement_latency;
-  const TimeUs never{std::numeric_limits<int64_t>::max()};
-  for (const TruthSample& truth : run.truth) {
-    // Deliver everything due up to the truth sample, in delivery order (attitude, then IMU, then
-    // measurements on ties: the autopilot's attitude is current when its IMU sample arrives).
-    for (;;) {
-      const TimeUs t_att = i_att < run.attitude.size() ? run.attitude[i_att].stamp : never;
-      const TimeUs t_imu = i_imu < run.imu.size() ? run.imu[i_imu].stamp : never;
-      const TimeUs t_pose = i_pose < run.poses.size() ? run.poses[i_pose].stamp + lat : never;
-      const TimeUs t_alt = i_alt < run.altitude.size() ? run.altitude[i_alt].stamp + lat : never;
-      TimeUs next = t_att;
-      int which = 0;
-      if (t_imu < next) { next = t_imu; which = 1; }
-      if (t_pose < next) { next = t_pose; which = 2; }
-      if (t_alt < next) { next = t_alt; which = 3; }
-      if (next > truth.stamp) break;
-      switch (which) {
-        case 0: filter.set_attitude(run.attitude[i_att++]); break;
-        case 1: (void)filter.predict(run.imu[i_imu++]); break;
-        case 2: (void)filter.update_pose(run.poses[i_pose++]); break;
-        default: (void)filter.update_altitude(run.altitude[i_alt++]); break;
-      }
-    }
-    const NavState s = filter.state();
-    if (!s.valid || truth.stamp < run.truth.front().stamp + run.score_after) continue;
+  replay_run(filter, run, [&](const TruthSample& truth, const NavState& s) {
+    if (!s.valid || truth.stamp < run.truth.front().stamp + run.score_after) return;
     const float e = (s.velocity_mps - truth.velocity_mps).norm();
     if (!std::isfinite(e)) {
       acc.sum_sq = std::numeric_limits<double>::infinity();
-      continue;
+      return;
     }
     acc.sum_sq += static_cast<double>(e) * e;
     acc.sum += e;
     acc.sum_pos += (s.position_m - truth.position_m).norm();
     ++acc.n;
-  }
+  });
 }
 
 }  // namespace

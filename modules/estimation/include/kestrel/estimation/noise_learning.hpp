@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 // Learning the filter's noise parameters from flights with ground truth (paper 000 section
 // 5.2, after Abbeel, Coates, Montemerlo, Ng and Thrun, "Discriminative training of Kalman
 // filters", RSS 2005): instead of the likelihood of the measurements, minimise the error that
@@ -45,6 +46,39 @@ struct RecordedRun {
   // start-up transient (velocity initialised at zero) says nothing about the noise parameters.
   Duration score_after = Duration::from_s(2.0);
 };
+
+// Feeds a recorded run to the filter in delivery order (attitude, then IMU, then the
+// measurements, each `measurement_latency` after its stamp; on ties the autopilot's attitude is
+// current when its IMU sample arrives) and calls on_truth(truth, filter.state()) at every truth
+// sample once everything due by then has been delivered. The learning objective and the
+// tuning tool's plots both replay runs through this one loop.
+template <class OnTruth>
+void replay_run(NavFilter& filter, const RecordedRun& run, OnTruth&& on_truth) {
+  std::size_t i_imu = 0, i_att = 0, i_pose = 0, i_alt = 0;
+  const Duration lat = run.measurement_latency;
+  const TimeUs never{INT64_MAX};
+  for (const TruthSample& truth : run.truth) {
+    for (;;) {
+      const TimeUs t_att = i_att < run.attitude.size() ? run.attitude[i_att].stamp : never;
+      const TimeUs t_imu = i_imu < run.imu.size() ? run.imu[i_imu].stamp : never;
+      const TimeUs t_pose = i_pose < run.poses.size() ? run.poses[i_pose].stamp + lat : never;
+      const TimeUs t_alt = i_alt < run.altitude.size() ? run.altitude[i_alt].stamp + lat : never;
+      TimeUs next = t_att;
+      int which = 0;
+      if (t_imu < next) { next = t_imu; which = 1; }
+      if (t_pose < next) { next = t_pose; which = 2; }
+      if (t_alt < next) { next = t_alt; which = 3; }
+      if (next > truth.stamp) break;
+      switch (which) {
+        case 0: filter.set_attitude(run.attitude[i_att++]); break;
+        case 1: (void)filter.predict(run.imu[i_imu++]); break;
+        case 2: (void)filter.update_pose(run.poses[i_pose++]); break;
+        default: (void)filter.update_altitude(run.altitude[i_alt++]); break;
+      }
+    }
+    on_truth(truth, filter.state());
+  }
+}
 
 struct VelocityError {
   double rms_mps = 0;   // sqrt of the objective
