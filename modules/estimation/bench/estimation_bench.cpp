@@ -1,5 +1,7 @@
 // Hot paths of the navigation filter: one fixed-clock prediction (200 Hz IMU), and a pose that
 // arrives one second late (restart at the slot one second back, replay 200 steps).
+// Heap use here is set-up before each benchmark's timed loop (large objects that would not fit
+// on the stack); the timed code itself never allocates (see the alloc_guard tests).
 #include <benchmark/benchmark.h>
 
 #include <memory>

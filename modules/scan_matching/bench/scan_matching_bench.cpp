@@ -1,4 +1,6 @@
 // Benchmarks of the scan matcher at the paper's configuration (paper 000, section 5.1).
+// Heap use here is set-up before each benchmark's timed loop (large objects that would not fit
+// on the stack); the timed code itself never allocates (see the alloc_guard tests).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
