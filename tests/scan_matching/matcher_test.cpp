@@ -99,6 +99,44 @@ TEST(ScanMatcher, CovarianceAlongCorridorAndRoundInCorner) {
 }
 
 // Bad scans are rejected with a flag, never crash, and do not disturb the next good scan.
+// A prior's uncertainty sizes the search window: a 2 degree turn the prior missed is found
+// when the prior says its heading may be off by that much, and not when it claims to be sure
+// (then the window is the configured minimum, 1.15 degrees, and the match stops at its edge).
+TEST(ScanMatcher, PriorUncertaintySizesTheWindow) {
+  const float turn = 0.035f;
+  for (const float heading_std : {0.001f, 0.02f}) {
+    Rig r;
+    ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(0))).ok());
+    PosePrior prior;
+    prior.pose = {0, 0, 0};
+    prior.position_std_m = 0.005f;
+    prior.heading_std_rad = heading_std;
+    const ScanMatch s = r.m->process(test::cast_scan({0, 0, turn}, test::room(), 1081, 4.712f, at(1)), &prior);
+    ASSERT_TRUE(s.ok());
+    const float err = std::fabs(s.measurement.pose.theta - turn);
+    if (heading_std > 0.01f) {
+      EXPECT_LT(err, 0.003f);
+    } else {
+      EXPECT_GT(err, 0.01f);
+      EXPECT_LE(std::fabs(s.measurement.pose.theta), r.m->params().min_window_rad + 0.003f);
+    }
+  }
+}
+
+// A prior whose uncertainty is not a number keeps the acceleration window (no crash, no NaN).
+TEST(ScanMatcher, NonFinitePriorUncertaintyFallsBack) {
+  Rig r;
+  ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(0))).ok());
+  PosePrior prior;
+  prior.pose = {0.01f, 0, 0};
+  prior.position_std_m = std::numeric_limits<float>::quiet_NaN();
+  prior.heading_std_rad = std::numeric_limits<float>::infinity();  // widest window allowed
+  const ScanMatch s = r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(1)), &prior);
+  ASSERT_TRUE(s.ok());
+  EXPECT_TRUE(s.measurement.pose.finite());
+  EXPECT_LT(std::hypot(s.measurement.pose.x, s.measurement.pose.y), 0.0075f);
+}
+
 TEST(ScanMatcher, RejectsBadScans) {
   Rig r;
   LaserScan good = test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(10));

@@ -80,12 +80,68 @@ TEST(CorrelativeSearch, BranchAndBoundEqualsExhaustiveOnRandomCases) {
   }
 }
 
+// Every block's bound (run-length sums over the max-pooled levels) is at least the exact score
+// of every translation in it, at every level.
+TEST(CorrelativeSearch, BlockBoundsHoldEveryScoreInTheBlock) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1, 1);
+  Fixture f(0.02f);
+  const int half = 20;
+  for (int trial = 0; trial < 4; ++trial) {
+    const auto pts = test::to_points(test::cast_scan({0.3f * u(rng), 0.3f * u(rng), 0.1f * u(rng)}, test::room(), 361));
+    const LikelihoodMap* m = f.local->acquire();
+    ASSERT_EQ(f.search->setup(pts, {0, 0, 0}, *m, half, 4, 0.0044f), Status::kOk);
+    for (int level = 1; level <= 5; ++level) {
+      const int s = 1 << level;
+      for (int by = -half; by <= half; by += s) {
+        for (int bx = -half; bx <= half; bx += s) {
+          const int k = trial - 2;
+          const int32_t b = f.search->block_bound(k, level, bx, by);
+          for (int ty = by; ty < by + s && ty <= half; ++ty) {
+            for (int tx = bx; tx < bx + s && tx <= half; ++tx) {
+              ASSERT_GE(b, f.search->score(k, tx, ty)) << level << " " << tx << " " << ty;
+            }
+          }
+        }
+      }
+    }
+    f.local->release();
+  }
+}
+
+// Points that fall outside the map under every translation are dropped from the search: the
+// result is the one without them.
+TEST(CorrelativeSearch, PointsFarOutsideTheMapChangeNothing) {
+  Fixture f(0.02f);
+  const auto pts = test::to_points(test::cast_scan({0.05f, -0.03f, 0.02f}, test::room(), 361));
+  auto more = pts;
+  for (int i = 0; i < 50 && more.count < kMaxPoints; ++i) {
+    more.x[more.count] = 40.0f + static_cast<float>(i);  // 40 m away: far outside a 11.5 m map
+    more.y[more.count] = -30.0f;
+    ++more.count;
+  }
+  const LikelihoodMap* m = f.local->acquire();
+  ASSERT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 8, 8, 0.0044f), Status::kOk);
+  const GridPose a = f.search->branch_and_bound();
+  ASSERT_EQ(f.search->setup(more, {0, 0, 0}, *m, 8, 8, 0.0044f), Status::kOk);
+  const GridPose b = f.search->branch_and_bound();
+  const GridPose e = f.search->exhaustive();
+  f.local->release();
+  EXPECT_EQ(a.score, b.score);
+  EXPECT_EQ(a.k, b.k);
+  EXPECT_EQ(a.tx, b.tx);
+  EXPECT_EQ(a.ty, b.ty);
+  EXPECT_EQ(e.score, b.score);
+}
+
 TEST(CorrelativeSearch, RejectsOversizedWindows) {
   Fixture f(0.02f);
   const auto pts = test::to_points(test::cast_scan({0, 0, 0}, test::room(), 361));
   const LikelihoodMap* m = f.local->acquire();
   EXPECT_EQ(f.search->setup(pts, {0, 0, 0}, *m, kMaxWindowCells + 1, 1, 0.01f), Status::kInvalidArgument);
   EXPECT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 1, kMaxThetaSteps + 1, 0.01f), Status::kInvalidArgument);
+  // A centre so far from the map that the fixed-point transform could not hold it.
+  EXPECT_EQ(f.search->setup(pts, {1e6f, 0, 0}, *m, 1, 1, 0.01f), Status::kInvalidArgument);
   f.local->release();
 }
 

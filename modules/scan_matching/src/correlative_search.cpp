@@ -11,22 +11,29 @@ Status CorrelativeSearch::setup(const ScanPoints& pts, const Pose2& centre, cons
       !(step_rad >= 0) || !centre.finite()) {
     return Status::kInvalidArgument;
   }
+  const float inv = 1.0f / map.resolution_m();
+  const float cx = (centre.x - map.origin_x_m()) * inv, cy = (centre.y - map.origin_y_m()) * inv;
+  // The fixed-point transform of rotate() holds centres within 2^22 cells of the map.
+  if (!(std::fabs(cx) < 4.0e6f) || !(std::fabs(cy) < 4.0e6f)) return Status::kInvalidArgument;
   map_ = &map;
   n_ = pts.count;
-  const float inv = 1.0f / map.resolution_m();
+  const auto q8 = [](float v) {
+    return static_cast<int32_t>(std::lround(std::clamp(v * 256.0f, -2.0e9f, 2.0e9f)));
+  };
   for (uint16_t i = 0; i < n_; ++i) {
-    px_[i] = pts.x[i] * inv;
-    py_[i] = pts.y[i] * inv;
+    px_[i] = q8(pts.x[i] * inv);
+    py_[i] = q8(pts.y[i] * inv);
   }
   centre_ = centre;
-  cx_cells_ = (centre.x - map.origin_x_m()) * inv;
-  cy_cells_ = (centre.y - map.origin_y_m()) * inv;
+  cx_q38_ = static_cast<int64_t>(q8(cx)) * (int64_t{1} << 30);
+  cy_q38_ = static_cast<int64_t>(q8(cy)) * (int64_t{1} << 30);
   step_rad_ = step_rad;
   half_cells_ = half_cells;
   half_steps_ = half_steps;
   top_level_ = 0;
   while ((1 << top_level_) < 2 * half_cells + 1) ++top_level_;
   rotated_k_ = 1 << 30;
+  runs_level_ = 0;
   nodes_ = 0;
   return Status::kOk;
 }
@@ -37,40 +44,100 @@ Pose2 CorrelativeSearch::pose_of(float k, float tx, float ty) const {
 }
 
 // The scan is transformed once per rotation: every translation is an integer cell offset.
+// The transform is fixed point (points Q8 cells, cos and sin Q30, 64-bit products, floor by
+// arithmetic shift): the Verdex has no FPU, and every target computes the same cells.
+// Points that land outside the map under every translation the search or a slice can ask
+// for (the window plus kMaxExhaustiveWindow + one leaf block) score zero everywhere and are
+// left out of this rotation's list (on a 10 m map in a 30 m hall, a third of the scan).
 void CorrelativeSearch::rotate(int k) {
   if (k == rotated_k_) return;
   rotated_k_ = k;
-  const float th = centre_.theta + static_cast<float>(k) * step_rad_;
-  const float c = std::cos(th), s = std::sin(th);
-  // floor() without a library call: truncate, then step down for negative fractions.
-  const auto floor_i = [](float v) {
-    const auto t = static_cast<int32_t>(v);
-    return t - static_cast<int32_t>(v < static_cast<float>(t));
-  };
+  runs_level_ = 0;
+  const double th = static_cast<double>(centre_.theta) + static_cast<double>(k) * step_rad_;
+  const auto c = static_cast<int64_t>(std::llround(std::cos(th) * 1073741824.0));
+  const auto s = static_cast<int64_t>(std::llround(std::sin(th) * 1073741824.0));
+  const int32_t reach = half_cells_ + kMaxExhaustiveWindow + 8;
+  const auto span = static_cast<uint32_t>(map_->dim() + 2 * reach);
+  uint16_t m = 0;
   for (uint16_t i = 0; i < n_; ++i) {
-    qx_[i] = floor_i(c * px_[i] - s * py_[i] + cx_cells_);
-    qy_[i] = floor_i(s * px_[i] + c * py_[i] + cy_cells_);
+    const int64_t px = px_[i], py = py_[i];
+    const auto x = static_cast<int32_t>((c * px - s * py + cx_q38_) >> 38);
+    const auto y = static_cast<int32_t>((s * px + c * py + cy_q38_) >> 38);
+    qx_[m] = x;
+    qy_[m] = y;
+    m = static_cast<uint16_t>(m + (static_cast<uint32_t>(x + reach) < span && static_cast<uint32_t>(y + reach) < span));
   }
+  nq_ = m;
 }
 
-int32_t CorrelativeSearch::bound(int level, int tx, int ty) const {
-  int32_t sum = 0;
-  if (level == 0) {
-    const unsigned d = static_cast<unsigned>(map_->dim());
-    const uint8_t* cells = map_->cells();
-    for (uint16_t i = 0; i < n_; ++i) {
-      const unsigned x = static_cast<unsigned>(qx_[i] + tx), y = static_cast<unsigned>(qy_[i] + ty);
-      if (x < d && y < d) sum += cells[y * d + x];
+// The lowest level the search asks for (kLeafLevel, where it stops descending) straight from
+// the points, each further level from the one below: with c the level-L base cell of a
+// point, floor((c + 1) / 2) is its level-(L+1) base cell.
+void CorrelativeSearch::build_runs(int level) {
+  if (runs_level_ >= level && runs_first_ <= level) return;
+  const auto merge_into = [](std::array<Run, kMaxPoints + 1>& out, auto&& source, int n) {
+    // Branch-free merge (a branch on "same cell" mispredicts along ragged contours). Runs
+    // start at slot 1; slot 0 is a sentinel that matches no cell (clamped cells are > -16385).
+    out[0] = {INT16_MIN, INT16_MIN, 0};
+    int m = 0;  // slot of the last run
+    for (int i = 0; i < n; ++i) {
+      const Run r = source(i);
+      const Run& last = out[static_cast<std::size_t>(m)];
+      const bool same = last.x == r.x && last.y == r.y;
+      const int slot = m + static_cast<int>(!same);
+      const uint16_t base = same ? last.count : uint16_t{0};
+      out[static_cast<std::size_t>(slot)] = {r.x, r.y, static_cast<uint16_t>(base + r.count)};
+      m = slot;
     }
-    return sum;
+    return static_cast<uint16_t>(m);
+  };
+  if (runs_level_ == 0 || level < runs_first_) {
+    const int first = std::max(1, std::min(level, kLeafLevel));
+    // Clamped into int16: a clamped cell plus any block index is still outside the map.
+    const int32_t off = (1 << first) - half_cells_;
+    const auto c16 = [](int32_t v) { return static_cast<int16_t>(std::clamp<int32_t>(v, -16384, 16383)); };
+    run_count_[static_cast<std::size_t>(first - 1)] = merge_into(
+        runs_[static_cast<std::size_t>(first - 1)],
+        [&](int i) { return Run{c16((qx_[i] + off) >> first), c16((qy_[i] + off) >> first), 1}; }, nq_);
+    runs_first_ = runs_level_ = first;
   }
-  const int s = 1 << level;
+  for (int l = runs_level_ + 1; l <= level; ++l) {
+    const auto& in = runs_[static_cast<std::size_t>(l - 2)];
+    run_count_[static_cast<std::size_t>(l - 1)] = merge_into(
+        runs_[static_cast<std::size_t>(l - 1)],
+        [&](int i) {
+          const Run& r = in[static_cast<std::size_t>(i + 1)];
+          return Run{static_cast<int16_t>((r.x + 1) >> 1), static_cast<int16_t>((r.y + 1) >> 1), r.count};
+        },
+        run_count_[static_cast<std::size_t>(l - 2)]);
+  }
+  runs_level_ = std::max(runs_level_, level);
+}
+
+int32_t CorrelativeSearch::bound(int level, int tx, int ty) {
+  if (level == 0) return exact(tx, ty);
+  build_runs(level);
+  // The block index along each axis; nodes at this level start at -half_cells + m * 2^level.
+  const int mx = (tx + half_cells_) >> level, my = (ty + half_cells_) >> level;
   const unsigned d = static_cast<unsigned>(level_dim(map_->dim(), level));
   const uint8_t* cells = map_->level(level);
-  for (uint16_t i = 0; i < n_; ++i) {
-    // Arithmetic shift floors; a negative index means every reachable fine cell is outside.
-    const unsigned x = static_cast<unsigned>((qx_[i] + tx + s) >> level);
-    const unsigned y = static_cast<unsigned>((qy_[i] + ty + s) >> level);
+  const auto& runs = runs_[static_cast<std::size_t>(level - 1)];
+  const uint16_t nr = run_count_[static_cast<std::size_t>(level - 1)];
+  int32_t sum = 0;
+  for (uint16_t i = 1; i <= nr; ++i) {
+    // A negative cell means every reachable fine cell is outside the map.
+    const unsigned x = static_cast<unsigned>(runs[i].x + mx), y = static_cast<unsigned>(runs[i].y + my);
+    if (x < d && y < d) sum += runs[i].count * cells[y * d + x];
+  }
+  return sum;
+}
+
+int32_t CorrelativeSearch::exact(int tx, int ty) const {
+  int32_t sum = 0;
+  const unsigned d = static_cast<unsigned>(map_->dim());
+  const uint8_t* cells = map_->cells();
+  for (uint16_t i = 0; i < nq_; ++i) {
+    const unsigned x = static_cast<unsigned>(qx_[i] + tx), y = static_cast<unsigned>(qy_[i] + ty);
     if (x < d && y < d) sum += cells[y * d + x];
   }
   return sum;
@@ -79,6 +146,19 @@ int32_t CorrelativeSearch::bound(int level, int tx, int ty) const {
 int32_t CorrelativeSearch::score(int k, int tx, int ty) {
   rotate(k);
   return bound(0, tx, ty);
+}
+
+void CorrelativeSearch::overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit) {
+  rotate(k);
+  inside = fit = 0;
+  const unsigned d = static_cast<unsigned>(map_->dim());
+  const uint8_t* cells = map_->cells();
+  for (uint16_t i = 0; i < nq_; ++i) {
+    const unsigned x = static_cast<unsigned>(qx_[i] + tx), y = static_cast<unsigned>(qy_[i] + ty);
+    if (x >= d || y >= d) continue;  // the map cannot judge
+    ++inside;
+    fit += cells[y * d + x] >= threshold;
+  }
 }
 
 bool CorrelativeSearch::better(const GridPose& a, const GridPose& b) {
@@ -95,22 +175,66 @@ bool CorrelativeSearch::better(const GridPose& a, const GridPose& b) {
   return a.tx < b.tx;
 }
 
-// Image addition: adds each point's map window to the score image, one row at a time.
-void CorrelativeSearch::accumulate(int x0, int y0, int half) {
-  const int w = 2 * half + 1;
+// Image addition: adds each point's w x w map window to the score image. Rows are padded to whole
+// lane groups; the padding lanes sum cells right of the window and are dropped when the image
+// is packed to (2 half + 1)^2 at the end. Points whose padded window lies inside the map (all
+// but a few at the map's edge) go through the SIMD kernels: one score row from all points at
+// a time with the row in registers when it is at most kMaxRegisterGroups groups wide, else
+// point by point; the rest are clipped, one cell at a time.
+void CorrelativeSearch::accumulate(int x0, int y0, int w) {
+  const int stride = (w + kRowLanes - 1) / kRowLanes * kRowLanes;
   const int d = map_->dim();
   const uint8_t* cells = map_->cells();
-  std::fill(acc_.begin(), acc_.begin() + w * w, uint16_t{0});
-  for (uint16_t i = 0; i < n_; ++i) {
+  std::fill(acc_.begin(), acc_.begin() + w * stride, uint16_t{0});
+  int inside = 0;
+  for (uint16_t i = 0; i < nq_; ++i) {
     const int bx = qx_[i] + x0, by = qy_[i] + y0;  // map cell of window entry (0, 0)
+    if (bx >= 0 && by >= 0 && bx + stride <= d && by + w <= d) {
+      offsets_[static_cast<std::size_t>(inside++)] = by * d + bx;
+      continue;
+    }
     const int ux0 = std::max(0, -bx), ux1 = std::min(w, d - bx);
     const int uy0 = std::max(0, -by), uy1 = std::min(w, d - by);
-    if (ux0 >= ux1) continue;
+    if (ux0 >= ux1 || uy0 >= uy1) continue;
     for (int uy = uy0; uy < uy1; ++uy) {
-      const uint8_t* src = cells + static_cast<std::size_t>(by + uy) * d + bx;
-      uint16_t* dst = acc_.data() + uy * w;
-      for (int ux = ux0; ux < ux1; ++ux) dst[ux] = static_cast<uint16_t>(dst[ux] + src[ux]);
+      add_row_scalar(acc_.data() + uy * stride + ux0, cells + static_cast<std::size_t>(by + uy) * d + bx + ux0, ux1 - ux0);
     }
+  }
+  const int groups = kRowLanes == 8 ? stride / 8 : 0;
+  if (groups == 1) {
+#if defined(__ARM_NEON) || defined(__SSE2__)
+    // One lane group: the rows of the whole block stay in registers.
+    const auto block = [&]<int R>() { sum_block_lanes<R>(acc_.data(), stride, cells, d, offsets_.data(), inside); };
+    switch (w) {
+      case 1: block.template operator()<1>(); break;
+      case 2: block.template operator()<2>(); break;
+      case 3: block.template operator()<3>(); break;
+      case 4: block.template operator()<4>(); break;
+      case 5: block.template operator()<5>(); break;
+      case 6: block.template operator()<6>(); break;
+      case 7: block.template operator()<7>(); break;
+      default: block.template operator()<8>(); break;
+    }
+#endif
+  } else if (groups >= 2 && groups <= kMaxRegisterGroups) {
+    for (int uy = 0; uy < w; ++uy) {
+      uint16_t* dst = acc_.data() + uy * stride;
+      const uint8_t* rows = cells + static_cast<std::size_t>(uy) * d;
+      switch (groups) {
+        case 2: sum_rows_lanes<2>(dst, rows, offsets_.data(), inside); break;
+        case 3: sum_rows_lanes<3>(dst, rows, offsets_.data(), inside); break;
+        default: sum_rows_lanes<4>(dst, rows, offsets_.data(), inside); break;
+      }
+    }
+  } else {
+    for (int i = 0; i < inside; ++i) {
+      const uint8_t* src = cells + offsets_[static_cast<std::size_t>(i)];
+      uint16_t* dst = acc_.data();
+      for (int uy = 0; uy < w; ++uy, src += d, dst += stride) add_row_lanes(dst, src, stride);
+    }
+  }
+  if (stride != w) {
+    for (int uy = 1; uy < w; ++uy) std::copy_n(acc_.data() + uy * stride, w, acc_.data() + uy * w);
   }
 }
 
@@ -120,7 +244,7 @@ GridPose CorrelativeSearch::exhaustive() {
   const int w = 2 * h + 1;
   for (int k = -half_steps_; k <= half_steps_; ++k) {
     rotate(k);
-    accumulate(-h, -h, h);
+    accumulate(-h, -h, w);
     for (int uy = 0; uy < w; ++uy) {
       for (int ux = 0; ux < w; ++ux) {
         const int32_t v = acc_[static_cast<std::size_t>(uy * w + ux)];
@@ -136,7 +260,7 @@ GridPose CorrelativeSearch::exhaustive() {
 const uint16_t* CorrelativeSearch::slice(int k, int cx, int cy, int half) {
   half = std::clamp(half, 0, kMaxExhaustiveWindow);
   rotate(k);
-  accumulate(cx - half, cy - half, half);
+  accumulate(cx - half, cy - half, 2 * half + 1);
   return acc_.data();
 }
 
@@ -150,6 +274,20 @@ void CorrelativeSearch::dfs(int k, int32_t root_bound, GridPose& best) {
     if (n.level == 0) {
       const GridPose cand{k, n.tx, n.ty, n.bound};
       if (better(cand, best)) best = cand;
+      continue;
+    }
+    if (n.level <= kLeafLevel) {
+      // Every pose of the block at once by image addition: on SIMD targets this costs about
+      // what two or three exact scores do, where descending would cost up to 84 bounds.
+      const int bs = 1 << n.level;
+      accumulate(n.tx, n.ty, bs);
+      for (int uy = 0; uy < bs && n.ty + uy <= half_cells_; ++uy) {
+        for (int ux = 0; ux < bs && n.tx + ux <= half_cells_; ++ux) {
+          const GridPose cand{k, n.tx + ux, n.ty + uy, acc_[static_cast<std::size_t>(uy * bs + ux)]};
+          if (better(cand, best)) best = cand;
+        }
+      }
+      nodes_ += static_cast<uint64_t>(bs * bs - 1);
       continue;
     }
     const int level = n.level - 1;
@@ -185,20 +323,9 @@ void CorrelativeSearch::dfs(int k, int32_t root_bound, GridPose& best) {
 }
 
 GridPose CorrelativeSearch::branch_and_bound(const GridPose* seeds, int seed_count) {
-  const int nt = 2 * half_steps_ + 1;
-  for (int k = -half_steps_; k <= half_steps_; ++k) {
-    rotate(k);
-    order_[static_cast<std::size_t>(k + half_steps_)] = {bound(top_level_, -half_cells_, -half_cells_), k};
-  }
-  std::sort(order_.begin(), order_.begin() + nt, [](const ThetaBound& a, const ThetaBound& b) {
-    return a.bound != b.bound ? a.bound > b.bound : a.k < b.k;
-  });
   // The prediction itself is a real candidate: starting from its exact score prunes early.
-  GridPose best;
-  if (half_steps_ >= 0) {
-    rotate(0);
-    best = {0, 0, 0, bound(0, 0, 0)};
-  }
+  rotate(0);
+  GridPose best{0, 0, 0, bound(0, 0, 0)};
   for (int i = 0; i < seed_count; ++i) {
     const GridPose& sd = seeds[i];
     if (std::abs(sd.k) > half_steps_ || std::abs(sd.tx) > half_cells_ || std::abs(sd.ty) > half_cells_) continue;
@@ -206,11 +333,18 @@ GridPose CorrelativeSearch::branch_and_bound(const GridPose* seeds, int seed_cou
     const GridPose cand{sd.k, sd.tx, sd.ty, bound(0, sd.tx, sd.ty)};
     if (better(cand, best)) best = cand;
   }
-  for (int i = 0; i < nt; ++i) {
-    const ThetaBound& t = order_[static_cast<std::size_t>(i)];
-    if (t.bound < best.score) break;  // sorted: no later rotation can win either
-    rotate(t.k);
-    dfs(t.k, t.bound, best);
+  // Rotations outward from the best so far: the optimum is usually near it, and finding it
+  // first is what lets the bounds of the other rotations prune them whole. (Ranking the
+  // rotations by the bound of their whole window instead costs a second transform of the
+  // scan per rotation and, the window's bound being loose, prunes no better.)
+  const int centre = best.k;
+  for (int dk = 0; dk <= 2 * half_steps_; ++dk) {
+    for (const int k : {centre - dk, centre + dk}) {
+      if (k < -half_steps_ || k > half_steps_ || (dk == 0 && k != centre - dk)) continue;
+      rotate(k);
+      const int32_t top = bound(top_level_, -half_cells_, -half_cells_);
+      if (top >= best.score) dfs(k, top, best);
+    }
   }
   return best;
 }

@@ -29,7 +29,23 @@ Status ScanMatcher::configure(const Params& p, const Pose2& initial) {
   return Status::kOk;
 }
 
+void ScanMatcher::update_beam_table(const LaserScan& scan) {
+  if (scan.beam_count == table_beams_ && scan.first_angle_rad == table_first_rad_ &&
+      scan.angle_step_rad == table_step_rad_) {
+    return;
+  }
+  for (uint16_t i = 0; i < scan.beam_count; ++i) {
+    const float a = scan.angle_of(i);
+    beam_cos_[i] = std::cos(a);
+    beam_sin_[i] = std::sin(a);
+  }
+  table_beams_ = scan.beam_count;
+  table_first_rad_ = scan.first_angle_rad;
+  table_step_rad_ = scan.angle_step_rad;
+}
+
 bool ScanMatcher::to_points(const LaserScan& scan) {
+  update_beam_table(scan);
   ScanPoints& pts = key_.points;
   pts.count = 0;
   pts.angle_step_rad = std::fabs(scan.angle_step_rad);
@@ -41,9 +57,8 @@ bool ScanMatcher::to_points(const LaserScan& scan) {
     if (!LaserScan::is_return(r)) continue;
     const float rf = static_cast<float>(r);
     if (rf < lo || rf >= hi) continue;  // at the maximum range: no return, not a surface
-    const float a = scan.angle_of(i);
-    pts.x[pts.count] = rf * 1e-3f * std::cos(a);
-    pts.y[pts.count] = rf * 1e-3f * std::sin(a);
+    pts.x[pts.count] = rf * 1e-3f * beam_cos_[i];
+    pts.y[pts.count] = rf * 1e-3f * beam_sin_[i];
     pts.range_mm[pts.count] = r;
     pts.beam[pts.count] = i;
     ++pts.count;
@@ -51,7 +66,7 @@ bool ScanMatcher::to_points(const LaserScan& scan) {
   return pts.count >= std::max<uint16_t>(params_.min_points, 2);
 }
 
-ScanMatch ScanMatcher::process(const LaserScan& scan, const Pose2* prior) {
+ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in) {
   using namespace match_flag;
   ScanMatch out;
   PoseMeasurement2& m = out.measurement;
@@ -112,9 +127,17 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const Pose2* prior) {
   // The window is the box around the prediction that max acceleration allows, grown to also
   // hold the vehicle stopping (the last pose): on logs sampled seconds apart the velocity
   // can change completely between scans, and on the vehicle the growth is v * dt, a few cm.
-  const float win_m0 = std::clamp(0.5f * params_.max_accel_mps2 * dt * dt, params_.min_window_m, params_.max_window_m);
-  const float win_rad0 = std::clamp(0.5f * params_.max_ang_accel_radps2 * dt * dt, params_.min_window_rad, params_.max_window_rad);
-  if (prior != nullptr && prior->finite()) pred = *prior;
+  const Pose2* prior = prior_in != nullptr && prior_in->pose.finite() ? &prior_in->pose : nullptr;
+  float win_m0 = 0.5f * params_.max_accel_mps2 * dt * dt;
+  float win_rad0 = 0.5f * params_.max_ang_accel_radps2 * dt * dt;
+  if (prior != nullptr) {
+    pred = *prior;
+    // NaN and negative sigmas fail these tests and keep the acceleration window.
+    if (prior_in->position_std_m >= 0) win_m0 = params_.prior_sigmas * prior_in->position_std_m;
+    if (prior_in->heading_std_rad >= 0) win_rad0 = params_.prior_sigmas * prior_in->heading_std_rad;
+  }
+  win_m0 = std::clamp(win_m0, params_.min_window_m, params_.max_window_m);
+  win_rad0 = std::clamp(win_rad0, params_.min_window_rad, params_.max_window_rad);
   // Without a prior, the stopped hypothesis (the last pose) is searched too; a prior already
   // says whether the vehicle stopped.
   const float gx = prior != nullptr ? 0.0f : 0.5f * (last_pose_.x - pred.x);
@@ -196,18 +219,8 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const Pose2* prior) {
 
   // Overlap: how many points land where the map expects a surface.
   int fit = 0, inside = 0;
-  const float th = pred.theta + static_cast<float>(best.k) * params_.angle_step_rad;
-  const float c = std::cos(th), s = std::sin(th);
+  search_.overlap(best.k, best.tx, best.ty, kCellMax / 2, inside, fit);
   const float bx = pred.x + static_cast<float>(best.tx) * res, by = pred.y + static_cast<float>(best.ty) * res;
-  for (uint16_t i = 0; i < key_.points.count; ++i) {
-    const float wx = bx + c * key_.points.x[i] - s * key_.points.y[i];
-    const float wy = by + s * key_.points.x[i] + c * key_.points.y[i];
-    const int cx = static_cast<int>(std::floor((wx - map->origin_x_m()) / res));
-    const int cy = static_cast<int>(std::floor((wy - map->origin_y_m()) / res));
-    if (cx < 0 || cy < 0 || cx >= map->dim() || cy >= map->dim()) continue;  // the map cannot judge
-    ++inside;
-    fit += map->at(cx, cy) >= kCellMax / 2;
-  }
   // The window follows the vehicle: far from the newest key scan, a new one re-centres it.
   const float span = static_cast<float>(map->dim()) * res;
   const float off_x = bx - (map->origin_x_m() + 0.5f * span), off_y = by - (map->origin_y_m() + 0.5f * span);

@@ -9,21 +9,33 @@
 //
 // Multi-resolution mode follows Olson (ICRA 2009): a coarse map whose cells are the max of the
 // fine cells they can reach gives an upper bound on the score of a whole block of
-// translations. Rotations are ranked by the bound of their whole window; each is searched
+// translations. Rotations are taken outward from the best pose known at the start; each is searched
 // depth-first over a quad-tree of translation blocks, best bound first, pruning any block whose
-// bound is below the best exact score found so far. Ties are broken towards the smallest
-// (theta, y, x) index in both modes, so both return the same pose.
+// bound is below the best exact score found so far; small blocks at the bottom are scored
+// whole by image addition (kLeafLevel). Both modes break ties by one total order (nearest
+// the prediction first), so both return the same pose.
+//
+// Every block searched at level L starts at -half + m * 2^L cells, so a point's level-L cell
+// is its own fixed base cell plus the block index m: the points of one rotation are reduced
+// once per level to runs of consecutive points sharing a base cell, and a coarse bound sums
+// count * cell over the runs. Along a wall many points share a coarse cell, so the loose,
+// frequently evaluated coarse bounds get cheap; the sums, and so the search, are unchanged.
 #include <array>
 #include <cstdint>
 
 #include "kestrel/core/se2.hpp"
 #include "kestrel/scan_matching/likelihood_map.hpp"
+#include "kestrel/scan_matching/row_add.hpp"
 #include "kestrel/scan_matching/scan_points.hpp"
 
 namespace kestrel::scan_matching {
 
 inline constexpr int kMaxThetaSteps = 512;      // rotation half-window, steps
 inline constexpr int kMaxExhaustiveWindow = 64; // translation half-window of the image addition
+// Branch and bound stops descending at blocks of 2^kLeafLevel translations and scores all of
+// them by image addition where the target has SIMD lanes (one lane group per row); without,
+// it descends to single poses.
+inline constexpr int kLeafLevel = kRowLanes == 8 ? 3 : 0;
 
 // A pose on the search grid: theta = centre + k * step, translation = centre + (tx, ty) cells.
 struct GridPose {
@@ -51,6 +63,15 @@ class CorrelativeSearch {
   const uint16_t* slice(int k, int cx, int cy, int half);
 
   int32_t score(int k, int tx, int ty);  // one pose, for tests
+  // The upper bound branch and bound uses for the block of 2^level translations at (tx, ty),
+  // which must lie on the search's block grid (tx + half_cells a multiple of 2^level); tests.
+  int32_t block_bound(int k, int level, int tx, int ty) {
+    rotate(k);
+    return bound(level, tx, ty);
+  }
+  // Of the points that fall inside the map at pose (k, tx, ty), how many (`fit`) land on
+  // cells of at least `threshold`: whether the scan is already in the map.
+  void overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit);
   Pose2 pose_of(float k, float tx, float ty) const;
   int half_cells() const { return half_cells_; }
   int half_steps() const { return half_steps_; }
@@ -61,29 +82,37 @@ class CorrelativeSearch {
     int32_t tx, ty, bound;
     int8_t level;
   };
+  // Consecutive points of the scan whose cell at one level is the same.
+  struct Run {
+    int16_t x, y;  // base cell: the cell under the block at -half_cells in both axes
+    uint16_t count;
+  };
   void rotate(int k);
-  int32_t bound(int level, int tx, int ty) const;
-  void accumulate(int x0, int y0, int half);
+  void build_runs(int level);
+  int32_t bound(int level, int tx, int ty);
+  int32_t exact(int tx, int ty) const;  // score of a translation at the current rotation
+  void accumulate(int x0, int y0, int w);
   void dfs(int k, int32_t root_bound, GridPose& best);
   static bool better(const GridPose& a, const GridPose& b);
 
   const LikelihoodMap* map_ = nullptr;
-  std::array<float, kMaxPoints> px_{}, py_{};  // points in cells, sensor frame
+  std::array<int32_t, kMaxPoints> px_{}, py_{};  // points in Q8 cells, sensor frame
   std::array<int32_t, kMaxPoints> qx_{}, qy_{};  // fine cell of each point at the current rotation
-  uint16_t n_ = 0;
+  std::array<int32_t, kMaxPoints> offsets_{};   // image addition: window corner of each point
+  uint16_t n_ = 0;   // points of the scan
+  uint16_t nq_ = 0;  // of them, those the current rotation keeps (qx_, qy_)
   Pose2 centre_;
-  float cx_cells_ = 0, cy_cells_ = 0;  // window centre in map cells
+  int64_t cx_q38_ = 0, cy_q38_ = 0;  // window centre in map cells, Q38
   float step_rad_ = 0;
   int half_cells_ = 0, half_steps_ = 0, top_level_ = 0;
   int rotated_k_ = 1 << 30;
+  int runs_first_ = 0, runs_level_ = 0;  // levels first..level hold runs of this rotation
+  std::array<std::array<Run, kMaxPoints + 1>, kMaxLevels> runs_{};  // [level - 1], from slot 1
+  std::array<uint16_t, kMaxLevels> run_count_{};
   uint64_t nodes_ = 0;
-  std::array<uint16_t, (2 * kMaxExhaustiveWindow + 1) * (2 * kMaxExhaustiveWindow + 1)> acc_{};
+  static constexpr int kAccStride = (2 * kMaxExhaustiveWindow + 1 + kRowLanes - 1) / kRowLanes * kRowLanes;
+  std::array<uint16_t, (2 * kMaxExhaustiveWindow + 1) * kAccStride> acc_{};
   std::array<Node, 4 * kMaxLevels + 8> stack_{};
-  struct ThetaBound {
-    int32_t bound;
-    int32_t k;
-  };
-  std::array<ThetaBound, 2 * kMaxThetaSteps + 1> order_{};
 };
 
 }  // namespace kestrel::scan_matching

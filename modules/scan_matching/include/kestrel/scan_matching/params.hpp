@@ -35,6 +35,7 @@ struct Params {
   float max_window_m = 0.30f;
   float min_window_rad = 0.02f;
   float max_window_rad = 0.35f;
+  float prior_sigmas = 4.0f;          // window half-width in prior standard deviations
   bool multi_resolution = true;     // branch and bound; false: exhaustive image addition
   float min_score = 0.15f;          // mean cell value / kCellMax below this: match is lost
   // --- covariance (5.1.3)

@@ -43,6 +43,13 @@ struct ScanMatch {
   bool ok() const { return (measurement.flags & match_flag::kRejected) == 0; }
 };
 
+// A pose the caller's filter predicts for the scan's stamp, and how far off it may be.
+struct PosePrior {
+  Pose2 pose;
+  float position_std_m = -1;  // 1 sigma; negative: unknown (window from max acceleration)
+  float heading_std_rad = -1;
+};
+
 class ScanMatcher {
  public:
   // Maps are allocated by the caller, once. synchronous: the local map is rebuilt inline
@@ -53,7 +60,10 @@ class ScanMatcher {
   // `prior`, when given, is the vehicle's pose at the scan's stamp as the caller's filter
   // predicts it: the search is centred there instead of on the matcher's own constant-velocity
   // prediction, which lets a match that was lost recover as soon as the scan fits again.
-  ScanMatch process(const LaserScan& scan, const Pose2* prior = nullptr);
+  // With its uncertainty, the window covers Params::prior_sigmas of it (within the window's
+  // limits) instead of what maximum acceleration allows since the last scan: the filter has
+  // already carried the motion, so what is left to search is the filter's own error.
+  ScanMatch process(const LaserScan& scan, const PosePrior* prior = nullptr);
 
   LocalMap& local_map() { return local_; }
   const Params& params() const { return params_; }
@@ -61,6 +71,7 @@ class ScanMatcher {
 
  private:
   bool to_points(const LaserScan& scan);
+  void update_beam_table(const LaserScan& scan);
 
   Params params_;
   bool synchronous_;
@@ -68,6 +79,11 @@ class ScanMatcher {
   CorrelativeSearch search_;
   CovarianceEstimator cov_;
   KeyScan key_;  // the scan being matched (points in sensor frame) and its pose
+  // Beam directions of the laser's geometry, computed when it changes (sin and cos per beam
+  // per scan would dominate the Verdex's software floating point).
+  std::array<float, kMaxBeams> beam_cos_{}, beam_sin_{};
+  float table_first_rad_ = 0, table_step_rad_ = 0;
+  uint16_t table_beams_ = 0;
   std::array<int32_t, 2 * 64 + 1> curve_{};
   Pose2 initial_;
   Pose2 last_pose_, prev_pose_;
@@ -76,10 +92,10 @@ class ScanMatcher {
   bool started_ = false;
 };
 
-// The vehicle configuration: both map buffers in one object the caller allocates statically.
-// 576 x 576 cells of 7.5 mm cover 4.3 m around the vehicle; with the max-pooled pyramid and
-// the segment lists, both buffers take about 0.95 MiB, inside the 1 MiB map budget of the
-// Overo (DESIGN.md).
+// The vehicle configuration: both map buffers in one object the caller allocates once at
+// start-up. 1024 x 1024 cells cover 10.2 m around the vehicle at its 1 cm cells (7.7 m at the
+// paper's 7.5 mm); with the max-pooled pyramids and segment lists both buffers take about
+// 2.7 MiB.
 template <int Dim, std::size_t MaxSegments>
 struct ScanMatcherStorage {
   LikelihoodMapStorage<Dim, MaxSegments> map_a, map_b;
