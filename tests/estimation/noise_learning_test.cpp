@@ -34,6 +34,7 @@ TEST(NoiseLearning, LearntParametersReduceVelocityErrorOnHeldOutFlight) {
   auto filter = std::make_unique<NavFilter>();
   LearningOptions opt;
   opt.max_evaluations = host ? 200 : 100;
+  opt.position_time_s = 0.0f;  // the paper's objective: velocity error alone
   const LearningResult r = learn_noise_parameters(*filter, hand, runs, opt);
   EXPECT_LE(r.evaluations, opt.max_evaluations);
   EXPECT_GT(r.before.samples, 1000u);
@@ -64,6 +65,16 @@ TEST(NoiseLearning, EvaluationIsDeterministicAndRejectsInvalidParameters) {
   EkfParams bad;
   bad.pose_cov_scale = 0.0f;
   EXPECT_TRUE(std::isinf(evaluate_velocity_error(*filter, bad, runs).rms_mps));
+  // The objective: velocity alone at tau = 0; position error over tau added otherwise, so it
+  // is larger, and shrinks as tau grows; a negative tau is refused (infinite).
+  EXPECT_EQ(a.objective, a.rms_mps);
+  const VelocityError t1 = evaluate_velocity_error(*filter, EkfParams{}, runs, 1.0f);
+  const VelocityError t2 = evaluate_velocity_error(*filter, EkfParams{}, runs, 2.0f);
+  EXPECT_EQ(t1.rms_mps, a.rms_mps);
+  EXPECT_GT(t1.objective, a.rms_mps);
+  EXPECT_LT(t2.objective, t1.objective);
+  EXPECT_GT(t2.objective, a.rms_mps);
+  EXPECT_TRUE(std::isinf(evaluate_velocity_error(*filter, EkfParams{}, runs, -1.0f).objective));
   // No runs at all: no samples, infinite error.
   EXPECT_TRUE(std::isinf(evaluate_velocity_error(*filter, EkfParams{}, {}).rms_mps));
 }

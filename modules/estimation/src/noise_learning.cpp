@@ -9,7 +9,7 @@ namespace kestrel::estimation {
 namespace {
 
 struct Accumulator {
-  double sum_sq = 0, sum = 0, sum_pos = 0;
+  double sum_sq = 0, sum = 0, sum_pos = 0, sum_pos_sq = 0;
   std::size_t n = 0;
 };
 
@@ -21,30 +21,36 @@ void replay(NavFilter& filter, const RecordedRun& run, Accumulator& acc) {
       acc.sum_sq = std::numeric_limits<double>::infinity();
       return;
     }
+    const double ep = (s.position_m - truth.position_m).norm();
     acc.sum_sq += static_cast<double>(e) * e;
     acc.sum += e;
-    acc.sum_pos += (s.position_m - truth.position_m).norm();
+    acc.sum_pos += ep;
+    acc.sum_pos_sq += std::isfinite(ep) ? ep * ep : std::numeric_limits<double>::infinity();
     ++acc.n;
   });
 }
 
 }  // namespace
 
-VelocityError evaluate_velocity_error(NavFilter& filter, const EkfParams& params, std::span<const RecordedRun> runs) {
+VelocityError evaluate_velocity_error(NavFilter& filter, const EkfParams& params, std::span<const RecordedRun> runs,
+                                      float position_time_s) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   Accumulator acc;
   for (const RecordedRun& run : runs) {
     filter.reset();
-    if (!ok(filter.set_params(params))) return VelocityError{std::numeric_limits<double>::infinity(), 0, 0, 0, 0};
+    if (!ok(filter.set_params(params)) || !(position_time_s >= 0)) return VelocityError{kInf, kInf, 0, 0, 0, 0};
     replay(filter, run, acc);
   }
   VelocityError out;
   out.samples = acc.n;
   if (acc.n == 0) {
-    out.rms_mps = std::numeric_limits<double>::infinity();
+    out.objective = out.rms_mps = kInf;
     return out;
   }
   const double n = static_cast<double>(acc.n);
   out.rms_mps = std::sqrt(acc.sum_sq / n);
+  const double tau = position_time_s;
+  out.objective = tau > 0 ? std::sqrt((acc.sum_sq + acc.sum_pos_sq / (tau * tau)) / n) : out.rms_mps;
   out.mean_mps = acc.sum / n;
   out.std_mps = std::sqrt(std::max(0.0, acc.sum_sq / n - out.mean_mps * out.mean_mps));
   out.pos_mean_m = acc.sum_pos / n;
@@ -55,9 +61,9 @@ LearningResult learn_noise_parameters(NavFilter& filter, const EkfParams& start,
                                       const LearningOptions& options) {
   LearningResult r;
   r.params = start;
-  r.before = evaluate_velocity_error(filter, start, runs);
+  r.before = evaluate_velocity_error(filter, start, runs, options.position_time_s);
   r.evaluations = 1;
-  double best = r.before.rms_mps;
+  double best = r.before.objective;
   VelocityError best_err = r.before;
   float step = options.initial_log_step;
   auto fields = ekf_param_fields(r.params);
@@ -75,10 +81,10 @@ LearningResult learn_noise_parameters(NavFilter& filter, const EkfParams& start,
         const float candidate = std::clamp(old * std::exp(dir * step), field->min, field->max);
         if (candidate == old) continue;
         *field->value = candidate;
-        const VelocityError e = evaluate_velocity_error(filter, r.params, runs);
+        const VelocityError e = evaluate_velocity_error(filter, r.params, runs, options.position_time_s);
         ++r.evaluations;
-        if (e.rms_mps < best) {
-          best = e.rms_mps;
+        if (e.objective < best) {
+          best = e.objective;
           best_err = e;
           improved = true;
           break;  // keep it; next parameter

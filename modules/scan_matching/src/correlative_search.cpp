@@ -76,18 +76,17 @@ void CorrelativeSearch::rotate(int k) {
 void CorrelativeSearch::build_runs(int level) {
   if (runs_level_ >= level && runs_first_ <= level) return;
   const auto merge_into = [](std::array<Run, kMaxPoints + 1>& out, auto&& source, int n) {
-    // Branch-free merge (a branch on "same cell" mispredicts along ragged contours). Runs
-    // start at slot 1; slot 0 is a sentinel that matches no cell (clamped cells are > -16385).
-    out[0] = {INT16_MIN, INT16_MIN, 0};
-    int m = 0;  // slot of the last run
+    // Branch-free merge (a branch on "same cell" mispredicts along ragged contours), the
+    // current run held in registers and stored every step. Runs start at slot 1; slot 0
+    // takes the sentinel, which matches no cell (clamped cells are > -16385).
+    Run cur{INT16_MIN, INT16_MIN, 0};
+    int m = 0;  // slot of the current run
     for (int i = 0; i < n; ++i) {
       const Run r = source(i);
-      const Run& last = out[static_cast<std::size_t>(m)];
-      const bool same = last.x == r.x && last.y == r.y;
-      const int slot = m + static_cast<int>(!same);
-      const uint16_t base = same ? last.count : uint16_t{0};
-      out[static_cast<std::size_t>(slot)] = {r.x, r.y, static_cast<uint16_t>(base + r.count)};
-      m = slot;
+      const bool same = cur.x == r.x && cur.y == r.y;
+      cur = {r.x, r.y, static_cast<uint16_t>(r.count + (same ? cur.count : 0))};
+      m += static_cast<int>(!same);
+      out[static_cast<std::size_t>(m)] = cur;
     }
     return static_cast<uint16_t>(m);
   };
