@@ -73,6 +73,28 @@ TEST(MissionController, HoverMissionTakesOffHoversAndLands) {
   EXPECT_FALSE(r.mc.wants_armed());
 }
 
+// GIVEN a valid estimate WHEN the mission starts THEN the vehicle rests on the ground for
+// preflight_s (at rest, motors off: the filter's zero-velocity window) and only then takes off.
+TEST(MissionController, RestsOnTheGroundForThePreflightTimeFirst) {
+  MissionRun r;
+  MissionParams p;
+  p.preflight_s = 2.0f;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
+  const TimeUs start = r.t + Duration::from_s(MissionRun::kDt);  // the first step's time
+  while (r.mc.phase() == Phase::kIdle && (r.t - start).seconds() < 5.0) {
+    EXPECT_TRUE(r.mc.at_rest());
+    EXPECT_FALSE(r.mc.wants_armed());
+    const GuidanceSetpoint s = r.step();
+    if (r.mc.phase() == Phase::kIdle) {
+      EXPECT_LT(s.position_m.z(), 0.01f);  // stays on the floor
+    }
+  }
+  EXPECT_EQ(r.mc.phase(), Phase::kTakeoff);
+  EXPECT_NEAR((r.t - start).seconds(), 2.0, 0.03);
+  EXPECT_FALSE(r.mc.at_rest());
+  EXPECT_TRUE(r.mc.wants_armed());
+}
+
 TEST(MissionController, WaypointsAreVisitedInOrderWithHolds) {
   MissionRun r;
   StaticVector<Waypoint, 4> wps;
@@ -156,6 +178,9 @@ TEST(MissionController, RejectsBadConfiguration) {
   MissionController mc;
   MissionParams p;
   p.takeoff_altitude_m = std::nanf("");
+  EXPECT_EQ(mc.configure(MissionKind::kHover, p), Status::kInvalidArgument);
+  p = MissionParams{};
+  p.preflight_s = -1.0f;
   EXPECT_EQ(mc.configure(MissionKind::kHover, p), Status::kInvalidArgument);
   EXPECT_EQ(mc.configure(MissionKind::kWaypoints, {}, nullptr), Status::kInvalidArgument);
   StaticVector<Waypoint, 2> wps;

@@ -149,6 +149,9 @@ void AutonomyStack::scan_task() {
   PoseMeasurement2 m = last_match_.measurement;
   if (!config_.use_measurement_time) m.stamp = dev_.clock.now();
   if (filter_.update_pose(m) == Status::kRejected) ++counters_.poses_gated;
+  // Resting on the ground with the motors off, the vehicle does not move: a zero-velocity
+  // update per scan lets the filter learn its accelerometer biases on every axis.
+  if (mission_.at_rest() && !armed_) (void)filter_.update_at_rest(scan_.stamp, config_.ekf.at_rest_var);
   nav_ = filter_.state();
   guidance_scan_ = scan_;
   guidance_scan_fresh_ = true;

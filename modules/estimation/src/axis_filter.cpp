@@ -56,4 +56,26 @@ void axis_position_update(AxisState& a, const ScalarInnovation& in, float delta)
   }
 }
 
+ScalarInnovation axis_velocity_innovation(const AxisState& a, float z, float r) {
+  ScalarInnovation in;
+  in.nu = z - a.x(1);
+  in.s = a.P(1, 1) + r;
+  return in;
+}
+
+void axis_velocity_update(AxisState& a, const ScalarInnovation& in) {
+  if (!(in.s > 0.0f)) return;
+  Eigen::Matrix3f& P = a.P;
+  const Eigen::Vector3f ph = P.col(1);
+  const Eigen::Vector3f k = ph / in.s;
+  a.x += k * in.nu;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) {
+      const float v = P(i, j) - k(i) * ph(j);
+      P(i, j) = v;
+      P(j, i) = v;
+    }
+  }
+}
+
 }  // namespace kestrel::estimation

@@ -14,6 +14,7 @@ std::array<params::ParamField, kEkfParamCount> ekf_param_fields(EkfParams& p) {
       {"heading_cov_scale", &p.heading_cov_scale, 1e-4f, 1e4f, "1", "scale of the scan matcher's heading variance"},
       {"altimeter_var", &p.altimeter_var, 1e-10f, 1e2f, "m^2", "altimeter variance when the sample has none"},
       {"altimeter_var_scale", &p.altimeter_var_scale, 1e-4f, 1e4f, "1", "scale of the altimeter's variance"},
+      {"at_rest_var", &p.at_rest_var, 1e-10f, 1e2f, "(m/s)^2", "zero-velocity variance while resting on the ground"},
       {"init_pos_var", &p.init_pos_var, 1e-10f, 1e4f, "m^2", "initial position variance"},
       {"init_vel_var", &p.init_vel_var, 1e-10f, 1e4f, "(m/s)^2", "initial velocity variance"},
       {"init_accel_bias_var", &p.init_accel_bias_var, 1e-10f, 1e2f, "(m/s^2)^2", "initial accelerometer bias variance"},

@@ -234,6 +234,20 @@ Status NavFilter::update_altitude(const AltimeterSample& meas) {
   return submit(e);
 }
 
+Status NavFilter::update_at_rest(TimeUs stamp, float variance_mps2) {
+  if (!std::isfinite(variance_mps2)) {
+    ++counters_.meas_not_finite;
+    return Status::kNotFinite;
+  }
+  if (!(variance_mps2 > 0.0f)) return Status::kInvalidArgument;
+  if (!initialised_) return Status::kNoData;
+  Entry e;
+  e.t = stamp;
+  e.kind = Kind::kAtRest;
+  e.R(0, 0) = variance_mps2;
+  return submit(e);
+}
+
 Status NavFilter::apply_correction(const PoseMeasurement2& slam_pose) {
   if (!slam_pose.pose.finite()) {
     ++counters_.meas_not_finite;
@@ -331,6 +345,7 @@ Status NavFilter::apply(Filters& f, Entry& e, const Slot& s, std::size_t log_ind
   switch (e.kind) {
     case Kind::kPose: return apply_pose(f, e, delta, fresh);
     case Kind::kAltitude: return apply_altitude(f, e, delta, fresh);
+    case Kind::kAtRest: return apply_at_rest(f, e, fresh);
     case Kind::kCorrection: break;
   }
   if (fresh) {
@@ -437,6 +452,12 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
   }
   axis_position_update(f.ax[2], iz, delta);
   if (count) ++counters_.altitude_updates;
+  return Status::kOk;
+}
+
+Status NavFilter::apply_at_rest(Filters& f, const Entry& e, bool count) {
+  for (AxisState& a : f.ax) axis_velocity_update(a, axis_velocity_innovation(a, 0.0f, e.R(0, 0)));
+  if (count) ++counters_.at_rest_updates;
   return Status::kOk;
 }
 

@@ -39,6 +39,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
       !positive_finite(p.arrive_speed_mps) || !positive_finite(p.estimate_timeout_s) ||
       !positive_finite(p.return_speed_mps) || !positive_finite(p.breadcrumb_spacing_m) ||
       !(std::isfinite(p.hover_duration_s) && p.hover_duration_s >= 0) ||
+      !(std::isfinite(p.preflight_s) && p.preflight_s >= 0) ||
       !(std::isfinite(p.explore_time_limit_s) && p.explore_time_limit_s >= 0) ||
       !(std::isfinite(p.landed_altitude_m) && p.landed_altitude_m >= 0 && p.landed_altitude_m < p.takeoff_altitude_m))
     return Status::kInvalidArgument;
@@ -88,6 +89,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
   const float dt = seen_estimate_ ? std::clamp(static_cast<float>((now - last_step_).seconds()), 0.0f, 0.1f) : 0.0f;
   last_step_ = now;
   if (estimate_ok) {
+    if (!seen_estimate_) first_estimate_ = now;
     last_valid_estimate_ = now;
     seen_estimate_ = true;
   }
@@ -104,6 +106,9 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
 
   switch (phase_) {
     case Phase::kIdle:
+      if ((now - first_estimate_).seconds() < params_.preflight_s) {
+        return hold(now, {nav.position_m.x(), nav.position_m.y(), nav.position_m.z()}, nav.heading_rad);
+      }
       home_ = nav.position_m;
       hold_point_ = {home_.x(), home_.y(), alt};
       hold_heading_ = nav.heading_rad;

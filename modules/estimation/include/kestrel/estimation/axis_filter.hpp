@@ -34,5 +34,9 @@ struct ScalarInnovation {
 void axis_predict(AxisState& a, float u, float dt, const AxisNoise& q, float extra_accel_var);
 ScalarInnovation axis_position_innovation(const AxisState& a, float z, float r, float delta);
 void axis_position_update(AxisState& a, const ScalarInnovation& in, float delta);
+// A velocity measurement (H = [0 1 0]; over the few milliseconds between a slot and a stamp
+// the bias term is negligible), used for zero-velocity updates while the vehicle rests.
+ScalarInnovation axis_velocity_innovation(const AxisState& a, float z, float r);
+void axis_velocity_update(AxisState& a, const ScalarInnovation& in);
 
 }  // namespace kestrel::estimation

@@ -29,6 +29,7 @@ struct EkfParams {
   float heading_cov_scale = 1.0f;   // 1: multiplies the scan matcher's heading variance
   float altimeter_var = 1e-4f;      // m^2: used when a sample carries no variance
   float altimeter_var_scale = 1.0f; // 1: multiplies the altimeter's own variance
+  float at_rest_var = 1e-4f;        // (m/s)^2: the zero velocity of a vehicle resting on the ground
   // Initial uncertainty (set when the first pose initialises the filter).
   float init_pos_var = 1e-2f;       // m^2
   float init_vel_var = 1e-2f;       // (m/s)^2
@@ -45,7 +46,7 @@ struct EkfParams {
   float gravity_mps2 = 9.80665f;    // m/s^2
 };
 
-inline constexpr std::size_t kEkfParamCount = 21;
+inline constexpr std::size_t kEkfParamCount = 22;
 std::array<params::ParamField, kEkfParamCount> ekf_param_fields(EkfParams& p);
 Status validate(const EkfParams& p);
 // Loads `path` over the defaults in `out`; on any error `out` is unchanged.

@@ -35,6 +35,11 @@
 // through frame_correction() (the accumulated D), so the present state moves by D while the
 // local, scan-matcher-driven estimate stays smooth. Covariances are left as they are.
 //
+// At rest. On the ground, motors idle, the velocity is known to be zero on every axis; fed
+// as a measurement (update_at_rest) it makes the accelerometer biases observable on all three
+// axes before take-off, including one the laser cannot see (along a corridor, where the scan
+// matcher says nothing and an unestimated 0.1 m/s^2 bias would carry the vehicle away).
+//
 // Start: IMU samples before the first pose are stored (kNoData); the first pose initialises
 // the state at its own stamp and propagates through the stored samples after it; the first
 // altimeter sample sets the height outright.
@@ -50,6 +55,7 @@
 //   Status predict(ImuSample)          one fixed-clock step; kNoData before the first pose
 //   Status update_pose(PoseMeasurement2)     scan matcher pose (world frame, 3x3 covariance)
 //   Status update_altitude(AltimeterSample)
+//   Status update_at_rest(stamp, variance)   zero velocity: the vehicle rests on the ground
 //   Status apply_correction(PoseMeasurement2) SLAM pose of the vehicle at meas.stamp
 //   NavState state() const             the newest estimate; valid once initialised
 //   counters(), frame_correction(), axis(i), heading(), history_span()
@@ -80,6 +86,7 @@ struct NavFilterCounters {
   uint32_t pose_rejected = 0;        // gated out (outliers)
   uint32_t altitude_updates = 0;
   uint32_t altitude_rejected = 0;
+  uint32_t at_rest_updates = 0;
   uint32_t corrections = 0;
   uint32_t corrections_rejected = 0;
   uint32_t meas_not_finite = 0;
@@ -106,6 +113,8 @@ class NavFilter {
   Status predict(const ImuSample& imu);
   Status update_pose(const PoseMeasurement2& meas);
   Status update_altitude(const AltimeterSample& meas);
+  // The vehicle is at rest at `stamp` (velocity zero, variance (m/s)^2 > 0 per axis).
+  Status update_at_rest(TimeUs stamp, float variance_mps2);
   Status apply_correction(const PoseMeasurement2& slam_pose);
 
   NavState state() const;
@@ -135,12 +144,12 @@ class NavFilter {
     Input in;       // the sample that ended the step into this slot
     Filters prior;  // state after that step, before this slot's measurements
   };
-  enum class Kind : uint8_t { kPose, kAltitude, kCorrection };
+  enum class Kind : uint8_t { kPose, kAltitude, kCorrection, kAtRest };
   struct Entry {
     TimeUs t;
     Kind kind = Kind::kPose;
     bool fresh = false;  // being applied for the first time: count and (correction) compute D
-    Eigen::Vector3f z = Eigen::Vector3f::Zero();  // pose x, y, psi | height | D dx, dy, dpsi
+    Eigen::Vector3f z = Eigen::Vector3f::Zero();  // pose x, y, psi | height | D dx, dy, dpsi | 0
     Eigen::Matrix3f R = Eigen::Matrix3f::Zero();
   };
 
@@ -154,6 +163,7 @@ class NavFilter {
   Status apply(Filters& f, Entry& e, const Slot& s, std::size_t log_index);
   Status apply_pose(Filters& f, const Entry& e, float delta, bool count);
   Status apply_altitude(Filters& f, const Entry& e, float delta, bool count);
+  Status apply_at_rest(Filters& f, const Entry& e, bool count);
   void shift(Filters& f, const Eigen::Vector3f& d) const;
   static void unshift(Entry& e, const Eigen::Vector3f& d);
   std::size_t slot_at(TimeUs t) const;

@@ -31,6 +31,10 @@ struct Waypoint {
 };
 
 struct MissionParams {
+  // On the ground with a valid estimate this long before take-off: resting, the filter learns
+  // the accelerometer biases on every axis (zero-velocity updates), also those the laser
+  // cannot observe where the vehicle starts.
+  float preflight_s = 2.0f;
   float takeoff_altitude_m = 1.0f;     // flight altitude above the floor
   float climb_rate_mps = 0.5f;         // set-point ramp during take-off
   float descent_rate_mps = 0.3f;       // set-point ramp during landing
@@ -64,6 +68,8 @@ class MissionController {
   bool finished() const { return phase_ == Phase::kLanded; }
   // True while the motors should run (take-off until touchdown).
   bool wants_armed() const { return phase_ != Phase::kIdle && phase_ != Phase::kLanded; }
+  // True while the vehicle rests on the ground (before take-off, after touchdown).
+  bool at_rest() const { return !wants_armed(); }
   TimeUs phase_started() const { return phase_start_; }
   const Eigen::Vector3f& home() const { return home_; }
   std::size_t waypoint_index() const { return waypoint_index_; }
@@ -85,6 +91,7 @@ class MissionController {
   TimeUs last_valid_estimate_;
   TimeUs last_step_;
   bool seen_estimate_ = false;
+  TimeUs first_estimate_;
   Eigen::Vector3f home_ = Eigen::Vector3f::Zero();
   Eigen::Vector3f hold_point_ = Eigen::Vector3f::Zero();
   float hold_heading_ = 0;
