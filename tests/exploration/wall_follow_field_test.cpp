@@ -88,6 +88,7 @@ TEST_F(FieldTest, SingleBeamCloserRepelsFartherAttractsAtTheGainOfEquation2) {
 TEST_F(FieldTest, SafeGainDominatesInsideSafeRadius) {
   WallFollowParams p;
   p.normalisation = FieldNormalisation::kPaperSum;
+  p.safe_range_m = 0.5f;  // round numbers for the expected values below
   LaserScan s = uniform_scan(urg, range_code::kNoReturn);
   s.range_mm[341] = 499;  // just inside r_safe = 0.5: K_safe
   const FieldResult inside = run(s, p);

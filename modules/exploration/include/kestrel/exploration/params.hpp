@@ -27,7 +27,8 @@ enum class FieldNormalisation : uint8_t {
 
 struct WallFollowParams {
   float target_range_m = 1.0f;  // r_t: distance from the walls the vehicle tries to keep
-  float safe_range_m = 0.5f;    // r_safe: beams closer than this use K_safe (must be < r_t)
+  float safe_range_m = 0.65f;   // r_safe: beams closer than this use K_safe (must be < r_t);
+                                // 0.5 m let the 0.27 m vehicle clip door jambs in closed loop
   float gain_wf = 0.1f;         // K_wf, 1/s (per radian of scan under kPerRadian)
   float gain_safe = 10.0f;      // K_safe, 1/s: "orders of magnitude" above K_wf, beats K_fr
                                 // even when only a door jamb's few beams are inside r_safe
