@@ -36,10 +36,17 @@ Params profile(const std::string& format) {
     p.max_range_m = 40.0f;
     p.max_accel_mps2 = 1.0f;
     p.max_ang_accel_radps2 = 1.0f;
-    p.min_window_m = 0.3f;
-    p.max_window_m = 1.6f;
-    p.min_window_rad = 0.25f;
-    p.max_window_rad = 0.75f;
+    // The stamps of a sub-sampled log do not bound the motion between its scans (intel turns
+    // 30 degrees between scans stamped 0.01 s apart), so the window never shrinks below what
+    // such logs move between scans (about 1.2 m and 35 degrees, data/README.md), and its cap
+    // leaves room for that around both the constant-velocity and the stopped hypothesis.
+    // For the same reason the constant-velocity hypothesis repeats the last displacement per
+    // scan instead of scaling it by the stamps' ratio (up to 2x, or 0.003x, on intel).
+    p.velocity_per_scan = true;
+    p.min_window_m = 1.2f;
+    p.max_window_m = 2.4f;
+    p.min_window_rad = 0.65f;
+    p.max_window_rad = 1.3f;
     p.join_max_m = 0.5f;
   } else {
     p.resolution_m = 0.01f;

@@ -71,6 +71,36 @@ TEST(ScanMatcher, TracksMotionWithoutAllocating) {
   EXPECT_LT(worst, 0.02f);
 }
 
+// A log sub-sampled by distance: 10 cm between scans, but the third scan is stamped only 0.1 s
+// after the second (1 s between the first two). Scaled by the stamps, the constant-velocity
+// hypothesis is 1 cm ahead; per scan, it is the whole 10 cm. The window is centred between it
+// and the stopped hypothesis, so its centre tells which prediction was made.
+TEST(ScanMatcher, VelocityPerScanIgnoresTheStamps) {
+  for (const bool per_scan : {false, true}) {
+    Params p;
+    p.resolution_m = 0.02f;
+    p.sigma_m = 0.03f;
+    p.velocity_per_scan = per_scan;
+    Rig r(p);
+    const TimeUs stamps[3] = {TimeUs::from_us(0), TimeUs::from_us(1000000), TimeUs::from_us(1100000)};
+    for (int i = 0; i < 3; ++i) {
+      const ScanMatch s = r.m->process(test::cast_scan({-1 + 0.1f * i, -0.5f, 0}, test::room(), 1081, 4.712f, stamps[i]));
+      ASSERT_TRUE(s.ok());
+      // By the stamps, the 0.1 s step gives a window (0.05 m from the acceleration floor plus
+      // the hypotheses' spread) whose edge is the truth: only the per-scan prediction is sure
+      // to hold the third scan's pose.
+      if (i < 2 || per_scan) {
+        EXPECT_NEAR(s.measurement.pose.x, 0.1f * i, 0.02f) << "per_scan " << per_scan << " scan " << i;
+        EXPECT_NEAR(s.measurement.pose.y, 0.0f, 0.02f);
+      }
+    }
+    const Pose2 centre = r.m->search().pose_of(0, 0, 0);
+    // Midpoint of the stopped pose (0.1) and the prediction (0.2 per scan, 0.11 by the stamps),
+    // on the 2 cm grid.
+    EXPECT_NEAR(centre.x, per_scan ? 0.15f : 0.105f, 0.015f) << "per_scan " << per_scan;
+  }
+}
+
 // In a corridor the translation ellipse is long and thin along the corridor (flagged); in a
 // corner it is round.
 TEST(ScanMatcher, CovarianceAlongCorridorAndRoundInCorner) {

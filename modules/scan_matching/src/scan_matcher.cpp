@@ -118,8 +118,8 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   const float dt = static_cast<float>((scan.stamp - last_stamp_).seconds());
   const float dt_prev = static_cast<float>((last_stamp_ - prev_stamp_).seconds());
   Pose2 pred = last_pose_;
-  if (accepted_ >= 2 && dt_prev > 1e-4f) {
-    const float f = std::min(dt / dt_prev, 2.0f);
+  if (accepted_ >= 2 && (params_.velocity_per_scan || dt_prev > 1e-4f)) {
+    const float f = params_.velocity_per_scan ? 1.0f : std::min(dt / dt_prev, 2.0f);
     pred.x += (last_pose_.x - prev_pose_.x) * f;
     pred.y += (last_pose_.y - prev_pose_.y) * f;
     pred.theta = wrap_angle(pred.theta + wrap_angle(last_pose_.theta - prev_pose_.theta) * f);

@@ -37,6 +37,11 @@ struct Params {
   float max_window_rad = 0.35f;
   float prior_sigmas = 4.0f;          // window half-width in prior standard deviations
   bool multi_resolution = true;     // branch and bound; false: exhaustive image addition
+  // Constant-velocity prediction: false scales the last displacement by the ratio of the scans'
+  // time steps (true stamps: the vehicle); true repeats the last displacement once per scan,
+  // for logs sub-sampled by distance travelled, whose stamps say little about the motion
+  // between scans (intel turns 30 degrees between scans stamped 0.01 s apart).
+  bool velocity_per_scan = false;
   float min_score = 0.15f;          // mean cell value / kCellMax below this: match is lost
   // --- covariance (5.1.3)
   uint8_t cov_half_window = 12;     // translation slice half-width, cells
