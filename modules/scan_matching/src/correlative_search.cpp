@@ -45,7 +45,7 @@ Pose2 CorrelativeSearch::pose_of(float k, float tx, float ty) const {
 
 // The scan is transformed once per rotation: every translation is an integer cell offset.
 // The transform is fixed point (points Q8 cells, cos and sin Q30, 64-bit products, floor by
-// arithmetic shift): the Verdex has no FPU, and every target computes the same cells.
+// arithmetic shift): the Verdex has no FPU, so the per-point work is integer.
 // Points that land outside the map under every translation the search or a slice can ask
 // for (the window plus kMaxExhaustiveWindow + one leaf block) score zero everywhere and are
 // left out of this rotation's list (on a 10 m map in a 30 m hall, a third of the scan).
