@@ -53,12 +53,17 @@ void SectorScan::erode(const LaserScan& scan, const SrtParams& params, uint16_t 
     const float rc = r * std::cos(rel), rs = r * std::sin(rel);
     for (int q = k0; q <= k1; ++q) {
       const std::size_t u = static_cast<std::size_t>(q);
-      const float along = ray_cos[u] * rc + ray_sin[u] * rs, side = ray_sin[u] * rc - ray_cos[u] * rs;
+      const float along = ray_cos[u] * rc + ray_sin[u] * rs;
       if (along <= 0.0f && r > rho) continue;
+      float& c = clear[u];
+      // The disc blocks the ray at along - sqrt(h2) >= along - rho: when even that is beyond
+      // the ray's clear length, the square root (software floating point on the Verdex) and
+      // the rest cannot change it.
+      if (along - rho >= c) continue;
+      const float side = ray_sin[u] * rc - ray_cos[u] * rs;
       const float h2 = rho * rho - side * side;
       if (h2 <= 0.0f) continue;
       const float block = std::max(along - std::sqrt(h2), 0.0f);
-      float& c = clear[static_cast<std::size_t>(q)];
       c = std::min(c, block);
     }
   }
