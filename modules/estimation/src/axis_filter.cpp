@@ -39,14 +39,14 @@ ScalarInnovation axis_position_innovation(const AxisState& a, float z, float r, 
   return in;
 }
 
-void axis_position_update(AxisState& a, const ScalarInnovation& in, float delta) {
+namespace {
+
+// A scalar measurement's update given PH^T: x += K nu, P -= K S K^T (kept exactly symmetric).
+void scalar_update(AxisState& a, const Eigen::Vector3f& ph, const ScalarInnovation& in) {
   if (!(in.s > 0.0f)) return;
   Eigen::Matrix3f& P = a.P;
-  // PH^T = P column 0 + delta * column 1.
-  const Eigen::Vector3f ph = P.col(0) + delta * P.col(1);
   const Eigen::Vector3f k = ph / in.s;
   a.x += k * in.nu;
-  // P - K S K^T, kept exactly symmetric.
   for (int i = 0; i < 3; ++i) {
     for (int j = i; j < 3; ++j) {
       const float v = P(i, j) - k(i) * ph(j);
@@ -54,6 +54,13 @@ void axis_position_update(AxisState& a, const ScalarInnovation& in, float delta)
       P(j, i) = v;
     }
   }
+}
+
+}  // namespace
+
+void axis_position_update(AxisState& a, const ScalarInnovation& in, float delta) {
+  // PH^T = P column 0 + delta * column 1.
+  scalar_update(a, a.P.col(0) + delta * a.P.col(1), in);
 }
 
 ScalarInnovation axis_velocity_innovation(const AxisState& a, float z, float r) {
@@ -63,19 +70,6 @@ ScalarInnovation axis_velocity_innovation(const AxisState& a, float z, float r) 
   return in;
 }
 
-void axis_velocity_update(AxisState& a, const ScalarInnovation& in) {
-  if (!(in.s > 0.0f)) return;
-  Eigen::Matrix3f& P = a.P;
-  const Eigen::Vector3f ph = P.col(1);
-  const Eigen::Vector3f k = ph / in.s;
-  a.x += k * in.nu;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = i; j < 3; ++j) {
-      const float v = P(i, j) - k(i) * ph(j);
-      P(i, j) = v;
-      P(j, i) = v;
-    }
-  }
-}
+void axis_velocity_update(AxisState& a, const ScalarInnovation& in) { scalar_update(a, a.P.col(1), in); }
 
 }  // namespace kestrel::estimation
