@@ -20,6 +20,13 @@ using test::uniform_scan;
 
 const LaserModel kUrg = LaserModel::urg04lx();
 
+// The whole arrival step in the arriving call (the tests that look at one call's result).
+SrtParams one_shot() {
+  SrtParams p;
+  p.arrival_work_per_cycle = 0;
+  return p;
+}
+
 // Walls at 1 m except an opening of +-half_deg around the nose.
 LaserScan opening_scan(double half_deg) {
   LaserScan s = uniform_scan(kUrg, 1000);
@@ -160,7 +167,7 @@ TEST(SrtStarPlanner, ExploresBothBranchesBacktracksAndFinishesOnTheRoot) {
 
 TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
   auto planner = std::make_unique<SrtStarPlanner>();
-  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  ASSERT_EQ(planner->configure(one_shot(), {}), Status::kOk);
   bool fresh = false;
   // Root: a 1.15 m wide opening ahead.
   ASSERT_EQ(planner->update({0, 0, 0}, opening_scan(35), TimeUs{}, fresh), Status::kOk);
@@ -189,7 +196,7 @@ TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
 
 TEST(SrtStarPlanner, EnclosedRoomFinishesAtOnce) {
   auto planner = std::make_unique<SrtStarPlanner>();
-  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  ASSERT_EQ(planner->configure(one_shot(), {}), Status::kOk);
   SegmentWorld room;
   room.add_box(-2, -2, 2, 2);
   bool fresh = false;
@@ -203,7 +210,7 @@ TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
   auto planner = std::make_unique<SrtStarPlanner>();
   GuidanceParams g;
   g.waypoint_time_limit_s = 10.0f;
-  ASSERT_EQ(planner->configure({}, g), Status::kOk);
+  ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
   const SegmentWorld world = l_corridors();
   (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);  // grow a little
   const std::size_t grown = planner->tree().nodes().size();
@@ -269,8 +276,7 @@ TEST(SrtStarPlanner, SameSeedSameWaypointsOtherSeedOtherWaypoints) {
 
 TEST(SrtStarPlanner, WaypointsStayInsideTheSectorOfAFrontier) {
   auto planner = std::make_unique<SrtStarPlanner>();
-  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
-  SrtParams p;
+  SrtParams p = one_shot();
   for (uint32_t seed = 1; seed < 40; ++seed) {
     p.seed = seed;
     ASSERT_EQ(planner->configure(p, {}), Status::kOk);
@@ -315,6 +321,182 @@ TEST(SrtStarPlanner, RejectsBadInputWithoutChangingState) {
   EXPECT_EQ(planner->update({0, 0, 0}, empty, TimeUs{}, fresh), Status::kInvalidArgument);
   EXPECT_EQ(planner->mode(), PlannerMode::kIdle);
   EXPECT_TRUE(planner->tree().nodes().empty());
+}
+
+
+// ---- the arrival step in slices ------------------------------------------------------------
+
+struct Trace {
+  std::vector<PlannerMode> modes;
+  std::vector<Point2> waypoints;
+  std::vector<uint16_t> current, target;
+  int calls = 0;
+  int busy_calls = 0;
+  uint32_t most_work = 0;
+};
+
+// Like teleport(), but while the planner is busy every further call gets a pose 0.25 m off the
+// arrival and the scan taken there, with time running on 0.1 s per call: the planner must not
+// use them. Ends after `arrivals` new waypoints or when the planner finishes.
+Trace fly(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start, int arrivals) {
+  Trace tr;
+  Pose2 pose = start;
+  TimeUs t{};
+  for (int k = 0; k < arrivals && !planner.finished(); ++k) {
+    bool fresh = false;
+    EXPECT_EQ(planner.update(pose, world.scan(kUrg, pose.x, pose.y, pose.theta, t), t, fresh), Status::kOk);
+    ++tr.calls;
+    tr.most_work = std::max(tr.most_work, planner.last_work());
+    const Pose2 off{pose.x + 0.25f, pose.y - 0.1f, pose.theta + 0.3f};
+    const LaserScan elsewhere = world.scan(kUrg, off.x, off.y, off.theta, t);
+    const Point2 held = planner.waypoint();
+    while (planner.busy()) {
+      EXPECT_TRUE(planner.has_waypoint());
+      EXPECT_EQ(planner.waypoint().x, held.x);  // the hold point while the step is worked on
+      EXPECT_EQ(planner.waypoint().y, held.y);
+      EXPECT_FALSE(fresh);
+      t += Duration::from_ms(100);
+      EXPECT_EQ(planner.update(off, elsewhere, t, fresh), Status::kOk);
+      ++tr.calls;
+      ++tr.busy_calls;
+      tr.most_work = std::max(tr.most_work, planner.last_work());
+    }
+    EXPECT_TRUE(fresh);
+    tr.modes.push_back(planner.mode());
+    tr.waypoints.push_back(planner.waypoint());
+    tr.current.push_back(planner.current_node());
+    tr.target.push_back(planner.target_node());
+    const Point2 w = planner.waypoint();
+    if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+    pose.x = w.x;
+    pose.y = w.y;
+    t += Duration::from_s(1.0);
+  }
+  return tr;
+}
+
+void expect_same_tree(const SrtStarTree& a, const SrtStarTree& b) {
+  ASSERT_EQ(a.nodes().size(), b.nodes().size());
+  for (std::size_t i = 0; i < a.nodes().size(); ++i) {
+    const SrtNode &x = a.nodes()[i], &y = b.nodes()[i];
+    EXPECT_EQ(x.position.x, y.position.x);
+    EXPECT_EQ(x.position.y, y.position.y);
+    EXPECT_EQ(x.parent, y.parent);
+    EXPECT_EQ(x.sector_start_rad, y.sector_start_rad);
+    EXPECT_EQ(x.radius_mm, y.radius_mm) << "node " << i;
+    EXPECT_EQ(x.clear_mm, y.clear_mm) << "node " << i;
+  }
+  ASSERT_EQ(a.frontiers().size(), b.frontiers().size());
+  for (std::size_t i = 0; i < a.frontiers().size(); ++i) {
+    const Frontier &x = a.frontiers()[i], &y = b.frontiers()[i];
+    EXPECT_EQ(x.position.x, y.position.x);
+    EXPECT_EQ(x.position.y, y.position.y);
+    EXPECT_EQ(x.node, y.node);
+    EXPECT_EQ(x.sector, y.sector);
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.attempts, y.attempts);
+  }
+}
+
+// Two rooms joined by a 1 m door, with a corridor leaving the second: forward steps,
+// backtracks with and without closing in on the node, frontiers dropped and removed.
+SegmentWorld two_rooms() {
+  SegmentWorld w;
+  w.add(-2, -2, 2, -2);
+  w.add(-2, -2, -2, 2);
+  w.add(-2, 2, 2, 2);
+  w.add(2, -2, 2, -0.5);  // the door: y in [-0.5, 0.5]
+  w.add(2, 0.5, 2, 2);
+  w.add(2, -2, 6, -2);
+  w.add(2, 2, 6, 2);
+  w.add(6, -2, 6, 1.0);  // the corridor north-east: x in [6, 7]
+  w.add(6, 2, 6, 1.8);
+  w.add(6, 1.0, 9, 1.0);
+  w.add(6, 1.8, 9, 1.8);
+  return w;
+}
+
+TEST(SrtStarPlannerSliced, GivesTheOneShotResultWhateverTheBudget) {
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    for (const SegmentWorld& world : {l_corridors(), two_rooms()}) {
+      SrtParams whole = one_shot();
+      whole.seed = seed;
+      auto reference = std::make_unique<SrtStarPlanner>();
+      ASSERT_EQ(reference->configure(whole, {}), Status::kOk);
+      const Trace a = fly(*reference, world, {0, 0, static_cast<float>(M_PI / 4)}, 60);
+      EXPECT_EQ(a.busy_calls, 0);
+      for (uint32_t budget : {97u, 2000u, SrtParams{}.arrival_work_per_cycle}) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed << " budget " << budget);
+        SrtParams sliced = whole;
+        sliced.arrival_work_per_cycle = budget;
+        auto planner = std::make_unique<SrtStarPlanner>();
+        ASSERT_EQ(planner->configure(sliced, {}), Status::kOk);
+        const Trace b = fly(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 60);
+        EXPECT_GT(b.busy_calls, 0);
+        ASSERT_EQ(a.waypoints.size(), b.waypoints.size());
+        for (std::size_t i = 0; i < a.waypoints.size(); ++i) {
+          EXPECT_EQ(a.modes[i], b.modes[i]) << "waypoint " << i;
+          EXPECT_EQ(a.waypoints[i].x, b.waypoints[i].x) << "waypoint " << i;
+          EXPECT_EQ(a.waypoints[i].y, b.waypoints[i].y) << "waypoint " << i;
+          EXPECT_EQ(a.current[i], b.current[i]);
+          EXPECT_EQ(a.target[i], b.target[i]);
+        }
+        EXPECT_EQ(reference->finished(), planner->finished());
+        EXPECT_EQ(reference->waypoints_issued(), planner->waypoints_issued());
+        expect_same_tree(reference->tree(), planner->tree());
+      }
+    }
+  }
+}
+
+TEST(SrtStarPlannerSliced, EachCallStaysWithinItsBudgetAndTheTimeLimitWaits) {
+  GuidanceParams g;
+  g.waypoint_time_limit_s = 10.0f;
+  auto planner = std::make_unique<SrtStarPlanner>();
+  ASSERT_EQ(planner->configure({}, g), Status::kOk);
+  const uint32_t budget = SrtParams{}.arrival_work_per_cycle;
+  // A call may finish the item it is on: at most one beam's erosion over every ray.
+  const uint32_t overrun = work::kErodeBeam + work::kErodeRay * kMaxSectors * SectorScan::kRaysPerSector;
+  SegmentWorld room;
+  room.add_box(-1.5, -1.2, 4.0, 1.2);
+  room.add(1.0, 1.2, 1.0, 0.9);  // a jamb near the vehicle: returns within the clearance's reach
+  const LaserScan scan = room.scan(kUrg, 0.2, 0.0, 0.4);
+  bool fresh = false;
+  ASSERT_EQ(planner->update({0.2f, 0.0f, 0.4f}, scan, TimeUs{}, fresh), Status::kOk);
+  // The vehicle holds where exploration started until the first waypoint is chosen.
+  ASSERT_TRUE(planner->busy());
+  EXPECT_FALSE(fresh);
+  EXPECT_EQ(planner->mode(), PlannerMode::kIdle);
+  EXPECT_TRUE(planner->has_waypoint());
+  EXPECT_FLOAT_EQ(planner->waypoint().x, 0.2f);
+  EXPECT_FLOAT_EQ(planner->waypoint().y, 0.0f);
+  EXPECT_GT(planner->last_work(), budget / 2);
+  EXPECT_LE(planner->last_work(), budget + overrun);
+  int calls = 1;
+  TimeUs t{};
+  while (planner->busy() && calls < 1000) {
+    t += Duration::from_s(20.0);  // far beyond the time limit: it does not run while busy
+    ASSERT_EQ(planner->update({0.2f, 0.0f, 0.4f}, scan, t, fresh), Status::kOk);
+    EXPECT_LE(planner->last_work(), budget + overrun);
+    ++calls;
+  }
+  EXPECT_GE(calls, 2);
+  EXPECT_FALSE(planner->busy());
+  EXPECT_TRUE(fresh);
+  EXPECT_EQ(planner->restarts(), 0u);
+  EXPECT_EQ(planner->mode(), PlannerMode::kForward);
+  EXPECT_EQ(planner->waypoint_time(), t);  // the limit counts from the call that finished it
+  // Now it runs: 10 s later, not at the waypoint, the tree restarts.
+  ASSERT_EQ(planner->update({0.2f, 0.0f, 0.4f}, scan, t + Duration::from_s(10.1), fresh), Status::kOk);
+  EXPECT_EQ(planner->restarts(), 1u);
+  EXPECT_EQ(planner->last_restart_reason(), RestartReason::kTimeout);
+  // The direction tables are kept: a second arrival of the same laser takes fewer calls.
+  int again = 1;
+  while (planner->busy() && again < 1000) {
+    ASSERT_EQ(planner->update({0.2f, 0.0f, 0.4f}, scan, t + Duration::from_s(11), fresh), Status::kOk);
+    ++again;
+  }
+  EXPECT_LT(again, calls);
 }
 
 }  // namespace

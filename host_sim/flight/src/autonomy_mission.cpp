@@ -258,6 +258,19 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
   for (const EstimateSample& s : samples_)
     if (tum.write(s.t_s, s.est_pos.x(), s.est_pos.y(), s.est_pos.z(), s.est_yaw) != Status::kOk) return Status::kIoError;
   if (tum.close() != Status::kOk) return Status::kIoError;
+  if (options_.kind == mission::MissionKind::kExplore && recorder() != nullptr) {
+    // The numbers behind coverage_vs_time.png, so a sweep can average runs on one plot
+    // (kestrel-coverage-plot): one `t_s,coverage` row per sample, coverage as a fraction.
+    std::ofstream csv(dir + "/coverage_vs_time.csv");
+    if (!csv) return Status::kIoError;
+    csv << "t_s,coverage\n";
+    char row[64];
+    for (const sim::FlightRecorder::CoverageSample& c : recorder()->coverage_series()) {
+      std::snprintf(row, sizeof row, "%.3f,%.6f\n", c.t_s, c.coverage);
+      csv << row;
+    }
+    if (!csv.flush()) return Status::kIoError;
+  }
 #if defined(KESTREL_HAS_PNG)
   // Paper 000 Figure 6: estimated against true position and velocity.
   output::Series ex{"estimate x", output::colors::kRed, {}, {}}, tx{"truth x", output::colors::kBlue, {}, {}};

@@ -50,6 +50,10 @@ struct SrtParams {
   float coverage_margin_m = 0.05f;        // a frontier this deep inside another safe region is gone
   uint8_t max_attempts_per_frontier = 2;  // waypoints drawn for one frontier before it is dropped
   uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
+  uint32_t arrival_work_per_cycle = 15000;  // work units (about 100 Verdex instructions each,
+                                            // work_units.hpp) of the arrival step per guidance
+                                            // cycle: 1.5 M of the guidance share's 2 M cycles;
+                                            // 0 does the whole step in the arriving cycle
 };
 
 struct GuidanceParams {

@@ -1,0 +1,23 @@
+#pragma once
+// Work units of SRT-Star's arrival step (sectors, erosion, tree update, waypoint choice), done in
+// slices so that one guidance cycle stays inside its share of the loop budget on the Verdex
+// (DESIGN.md: 5 ms of each 100 ms scan period at 400 MHz, about 2 M cycles, for guidance). A
+// unit is about 100 instructions of the PXA270 (software floating point); the weights below
+// come from `kestrel-budget insns` on the exploration benchmarks (README of this module).
+#include <cstdint>
+
+namespace kestrel::exploration::work {
+
+inline constexpr uint32_t kUnbounded = 0xFFFFFFFFu;  // a budget that never runs out: one call
+inline constexpr uint32_t kClassify = 200;           // SectorScan::begin, the integer pass over a scan
+inline constexpr uint32_t kTableEntry = 40;          // one sine and one cosine
+inline constexpr uint32_t kSkipBeams = 8;            // beams per unit that cannot shorten any ray
+inline constexpr uint32_t kErodeBeam = 30;           // a return that can: arcsine, ray bounds
+inline constexpr uint32_t kErodeRay = 3;             // one ray tested against that return
+inline constexpr uint32_t kFinish = 100;             // rounding the rays, finding the frontiers
+inline constexpr uint32_t kRegionTest = 4;           // a point against a safe region's reach
+inline constexpr uint32_t kRegionAngle = 40;         // ... and against its sector (atan2)
+inline constexpr uint32_t kPathBeam = 6;             // one return against a straight path
+inline constexpr uint32_t kFrontierScan = 16;        // frontiers per unit when picking one of a node
+
+}  // namespace kestrel::exploration::work
