@@ -105,14 +105,17 @@ struct Flight {
 };
 
 // Teleports the vehicle onto each new waypoint, facing the way it moved, until the planner
-// finishes or `max_steps` steps pass.
+// finishes or `max_steps` arrivals pass.
 Flight teleport(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start, int max_steps) {
   Flight fl;
   Pose2 pose = start;
   TimeUs t{};
   for (int k = 0; k < max_steps && !planner.finished(); ++k) {
     bool fresh = false;
-    EXPECT_EQ(planner.update(pose, world.scan(kUrg, pose.x, pose.y, pose.theta, t), t, fresh), Status::kOk);
+    const LaserScan scan = world.scan(kUrg, pose.x, pose.y, pose.theta, t);
+    EXPECT_EQ(planner.update(pose, scan, t, fresh), Status::kOk);
+    // An arrival step in slices: the vehicle waits on the spot until it is done.
+    for (int slice = 0; slice < 1000 && planner.busy(); ++slice) EXPECT_EQ(planner.update(pose, scan, t, fresh), Status::kOk);
     if (fresh) {
       fl.modes.push_back(planner.mode());
       fl.waypoints.push_back(planner.waypoint());
@@ -456,7 +459,8 @@ TEST(SrtStarPlannerSliced, EachCallStaysWithinItsBudgetAndTheTimeLimitWaits) {
   ASSERT_EQ(planner->configure({}, g), Status::kOk);
   const uint32_t budget = SrtParams{}.arrival_work_per_cycle;
   // A call may finish the item it is on: at most one beam's erosion over every ray.
-  const uint32_t overrun = work::kErodeBeam + work::kErodeRay * kMaxSectors * SectorScan::kRaysPerSector;
+  const uint32_t overrun =
+      work::kErodeBeam + (work::kErodeRay + work::kErodeSide + work::kErodeRoot) * kMaxSectors * SectorScan::kRaysPerSector;
   SegmentWorld room;
   room.add_box(-1.5, -1.2, 4.0, 1.2);
   room.add(1.0, 1.2, 1.0, 0.9);  // a jamb near the vehicle: returns within the clearance's reach

@@ -31,12 +31,14 @@ uint32_t SectorScan::erode_beam(const LaserScan& scan, std::size_t i) {
   const float half = r <= rho_ ? 0.5f * kPi<float> : std::asin(rho_ / r);
   const int k0 = std::max(0, static_cast<int>(std::floor((rel - half) / ray_width - 0.5f)));
   const int k1 = std::min(rays - 1, static_cast<int>(std::ceil((rel + half) / ray_width - 0.5f)));
-  if (k0 > k1) return 1;
+  uint32_t used = work::kErodeBeam;
+  if (k0 > k1) return used;
   // phi = ray angle - rel: cos and sin by the angle-difference identities, from the tables.
   const float rc = r * beam_cos_[k], rs = r * beam_sin_[k];
   for (int q = k0; q <= k1; ++q) {
     const std::size_t u = static_cast<std::size_t>(q);
     const float along = ray_cos_[u] * rc + ray_sin_[u] * rs;
+    used += work::kErodeRay;
     if (along <= 0.0f && r > rho_) continue;
     float& c = clear_[u];
     // The disc blocks the ray at along - sqrt(h2) >= along - rho: when even that is beyond
@@ -45,11 +47,13 @@ uint32_t SectorScan::erode_beam(const LaserScan& scan, std::size_t i) {
     if (along - rho_ >= c) continue;
     const float side = ray_sin_[u] * rc - ray_cos_[u] * rs;
     const float h2 = rho_ * rho_ - side * side;
+    used += work::kErodeSide;
     if (h2 <= 0.0f) continue;
     const float block = std::max(along - std::sqrt(h2), 0.0f);
     c = std::min(c, block);
+    used += work::kErodeRoot;
   }
-  return static_cast<uint32_t>(k1 - k0 + 1);
+  return used;
 }
 
 void SectorScan::finish() {
@@ -206,14 +210,12 @@ uint32_t SectorScan::advance(const LaserScan& scan, uint32_t budget) {
       }
       case Stage::kErode: {
         for (; cursor_ < beams_ && used < budget; ++cursor_) {
-          const uint32_t rays = erode_beam(scan, cursor_);
-          if (rays == 0) {
-            if (++skipped == work::kSkipBeams) {
-              skipped = 0;
-              ++used;
-            }
-          } else {
-            used += work::kErodeBeam + work::kErodeRay * rays;
+          const uint32_t units = erode_beam(scan, cursor_);
+          if (units > 0) {
+            used += units;
+          } else if (++skipped == work::kSkipBeams) {
+            skipped = 0;
+            ++used;
           }
         }
         if (cursor_ == beams_) stage_ = Stage::kFinish;

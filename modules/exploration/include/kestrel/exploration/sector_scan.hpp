@@ -89,7 +89,7 @@ class SectorScan {
  private:
   enum class Stage : uint8_t { kEmpty, kRayTable, kBeamTable, kErode, kFinish, kReady };
   std::size_t beam_slot(std::size_t i) const { return ccw_ ? i : beams_ - 1 - i; }
-  // One beam's erosion of the rays; returns the rays it tested.
+  // One beam's erosion of the rays; returns its work units (0 for a beam too far to erode).
   uint32_t erode_beam(const LaserScan& scan, std::size_t i);
   void finish();
 
