@@ -55,6 +55,7 @@ TEST(BlendExplorer, CommandIsWallFollowingPlusFrontierVelocityTowardsTheWaypoint
   Params p;
   p.guidance.speed_limit_mps = 100.0f;  // out of the way: check equations 1 and 5 exactly
   p.guidance.yaw_rate_limit_radps = 100.0f;
+  p.srt.arrival_work_per_cycle = 0;  // the first waypoint in the first step
   const SegmentWorld w = hall();
   LaserScan scan = w.scan(kUrg, 0, 0, 0.2);
   ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
