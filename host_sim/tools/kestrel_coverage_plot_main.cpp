@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
 
   std::vector<output::Panel> plot;
   for (std::size_t p = 0; p < panels.size(); ++p) {
-    output::Panel panel{panels[p].title, "% of the reachable area", {}};
+    output::Panel panel{panels[p].title + ": coverage", "%", {}};
     for (std::size_t k = 0; k < panels[p].series.size(); ++k) {
       const Result<metrics::CoverageCurve> m = metrics::mean_coverage(runs[p][k], step, end);
       if (!m.ok()) {

@@ -142,10 +142,10 @@ def plot_command(args, results):
             continue
         panels.setdefault((w, l), {}).setdefault(e, []).append((csv, m))
     for (w, l), explorers in panels.items():
-        cmd += ["--panel", f"{w}, {l}: mean coverage over seeds {args.seeds}"]
+        cmd += ["--panel", f"{w}, {l}, seeds {args.seeds}"]
         for e, runs in explorers.items():
             hit = sum(1 for _, m in runs if m.get("collisions", 0) > 0)
-            label = f"{e} ({len(runs)} runs, {hit} collided)"
+            label = f"{e} ({hit}/{len(runs)} collided)"
             cmd += ["--series", label + "=" + ",".join(csv for csv, _ in runs)]
     return cmd
 
