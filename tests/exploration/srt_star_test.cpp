@@ -503,5 +503,97 @@ TEST(SrtStarPlannerSliced, EachCallStaysWithinItsBudgetAndTheTimeLimitWaits) {
   EXPECT_LT(again, calls);
 }
 
+
+// ---- operator keep-out ---------------------------------------------------------------------
+
+// A corridor along x whose north wall has a 3 m glass window at x 2..5 (the laser sees through
+// it into a room behind), and a doorway further east at x 9..10.2.
+SegmentWorld corridor_with_window(bool glass_visible) {
+  SegmentWorld w;
+  w.add(-1, 6, 14, 6);  // south wall
+  w.add(-1, 6, -1, 9);
+  w.add(14, 6, 14, 9);
+  w.add(-1, 9, 2, 9);  // north wall: window x 2..5, door x 9..10.2
+  if (glass_visible) w.add(2, 9, 5, 9);
+  w.add(5, 9, 9, 9);
+  w.add(10.2, 9, 14, 9);
+  w.add(-1, 13, 14, 13);  // the room behind
+  w.add(-1, 9, -1, 13);
+  w.add(14, 9, 14, 13);
+  return w;
+}
+
+bool segment_crosses_box(Point2 a, Point2 b, const KeepOut& k, float grow) {
+  for (int i = 0; i <= 200; ++i) {  // dense sampling: an oracle independent of the slab test
+    const float t = static_cast<float>(i) / 200.0f;
+    const float x = a.x + t * (b.x - a.x), y = a.y + t * (b.y - a.y);
+    if (x > k.x_min - grow && x < k.x_max + grow && y > k.y_min - grow && y < k.y_max + grow) return true;
+  }
+  return false;
+}
+
+TEST(SrtStarPlannerKeepOut, NoWaypointIsDrawnIntoOrThroughTheWindow) {
+  const SegmentWorld laser_world = corridor_with_window(false);  // glass: the beams pass
+  const KeepOut window{2.0f, 8.9f, 5.0f, 9.1f};
+  int crossings_without = 0;
+  for (uint32_t seed = 1; seed <= 6; ++seed) {
+    for (bool keep_out : {false, true}) {
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " keep-out " << keep_out);
+      SrtParams p;
+      p.seed = seed;
+      if (keep_out) {
+        p.keep_out[0] = window;
+        p.keep_out_count = 1;
+      }
+      auto planner = std::make_unique<SrtStarPlanner>();
+      ASSERT_EQ(planner->configure(p, {}), Status::kOk);
+      Pose2 pose{2.0f, 7.5f, 0.0f};
+      TimeUs t{};
+      for (int k = 0; k < 40 && !planner->finished(); ++k) {
+        const LaserScan scan = laser_world.scan(kUrg, pose.x, pose.y, pose.theta, t);
+        bool fresh = false;
+        do {
+          ASSERT_EQ(planner->update(pose, scan, t, fresh), Status::kOk);
+        } while (planner->busy());
+        const Point2 w = planner->waypoint();
+        const bool crosses = segment_crosses_box({pose.x, pose.y}, w, window, 0.0f);
+        if (keep_out && planner->mode() == PlannerMode::kForward) {
+          // The path keeps the clearance from the box; so does the waypoint.
+          EXPECT_FALSE(segment_crosses_box({pose.x, pose.y}, w, window, p.clearance_m - 0.01f))
+              << "waypoint " << w.x << ", " << w.y;
+        }
+        crossings_without += !keep_out && crosses;
+        if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+        pose.x = w.x;
+        pose.y = w.y;
+        t += Duration::from_s(1.0);
+      }
+      if (keep_out) {
+        // No frontier the tree keeps was seen through the window.
+        for (const Frontier& f : planner->tree().frontiers())
+          EXPECT_FALSE(segment_crosses_box(planner->tree().nodes()[f.node].position, f.position, window,
+                                           p.clearance_m - 0.01f));
+      }
+    }
+  }
+  // Without the keep-out the planner does fly through the window: the test can fail.
+  EXPECT_GT(crossings_without, 0);
+}
+
+TEST(SrtStarPlannerKeepOut, BadBoxesAreRefused) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  SrtParams p;
+  p.keep_out_count = 1;
+  p.keep_out[0] = {1.0f, 0.0f, 0.0f, 1.0f};  // x_min > x_max
+  EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument);
+  p.keep_out[0] = {0.0f, NAN, 1.0f, 1.0f};
+  EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument);
+  p.keep_out[0] = {0.0f, 0.0f, 1.0f, 1.0f};
+  p.keep_out_count = kMaxKeepOuts + 1;
+  EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument);
+  p.keep_out_count = 1;
+  EXPECT_EQ(planner->configure(p, {}), Status::kOk);
+}
+
 }  // namespace
 }  // namespace kestrel::exploration

@@ -65,6 +65,28 @@ bool parse_double(const std::string& s, double& out) {
 
 }  // namespace
 
+std::string parse_keep_outs(const std::string& text, exploration::SrtParams& srt) {
+  srt.keep_out_count = 0;
+  std::stringstream boxes(text);
+  for (std::string box; std::getline(boxes, box, ';');) {
+    std::stringstream fields(box);
+    std::vector<double> v;
+    for (std::string f; std::getline(fields, f, ',');) {
+      double d = 0;
+      if (!parse_double(f, d)) return "'" + f + "' is not a number";
+      v.push_back(d);
+    }
+    if (v.size() != 4) return "expected x_min,y_min,x_max,y_max (m), got '" + box + "'";
+    if (v[0] > v[2] || v[1] > v[3]) return "'" + box + "': the minimum corner must come first";
+    if (srt.keep_out_count == exploration::kMaxKeepOuts)
+      return "more than " + std::to_string(exploration::kMaxKeepOuts) + " boxes";
+    srt.keep_out[srt.keep_out_count++] = {static_cast<float>(v[0]), static_cast<float>(v[1]),
+                                          static_cast<float>(v[2]), static_cast<float>(v[3])};
+  }
+  if (srt.keep_out_count == 0) return "no box";
+  return "";
+}
+
 std::string load_waypoints(const std::string& path, autonomy::StackConfig& stack) {
   std::ifstream in(path);
   if (!in) return path + ": cannot be read";
@@ -119,6 +141,8 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "explore_s" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d < 0) return "explore_s: '" + value + "' is not a non-negative number";
       out.stack.mission.explore_time_limit_s = static_cast<float>(d);
+    } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
+      if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
     } else if (key == "delay_s") {
       if (!parse_double(value, d) || d < 0 || d > 2) return "delay_s: '" + value + "' is not a delay in [0, 2] s";
       out.delay_s = d;

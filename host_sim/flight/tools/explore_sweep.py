@@ -51,6 +51,8 @@ def run_one(args, world, laser, explorer, seed):
         os.makedirs(d, exist_ok=True)
         cmd = ["nice", "-n", "10", args.sim, "--world", world, "--laser", laser, "--mission", "explore",
                "--explorer", explorer, "--duration", str(args.duration), "--seed", str(seed), "--out", d]
+        for kv in args.mission_arg or []:
+            cmd += ["--mission-arg", kv]
         with open(os.path.join(d, "stderr.txt"), "w") as err:
             subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=err, timeout=args.timeout, check=False)
     try:
@@ -85,6 +87,8 @@ def main():
     ap.add_argument("--duration", type=int, default=600)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=int, default=3600, help="wall-clock seconds per run")
+    ap.add_argument("--mission-arg", action="append", metavar="KEY=VALUE",
+                    help="passed to every run, e.g. keepout=2,8.9,5,9.1 (repeatable)")
     ap.add_argument("--plot", help="coverage-versus-time picture (PNG) of the sweep")
     ap.add_argument("--plot-tool", help="kestrel-coverage-plot (default: beside --sim)")
     args = ap.parse_args()

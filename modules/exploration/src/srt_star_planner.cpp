@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace kestrel::exploration {
 
@@ -125,6 +126,7 @@ void SrtStarPlanner::work_on_arrival(TimeUs now) {
       case Step::kTree:
         used += tree_.advance(sectors_, budget - used);
         if (!tree_.adding()) {
+          used += drop_frontiers_seen_through_keep_outs();
           step_ = Step::kPick;
           live_ = tree_.frontier_count_of(current_);
           used += 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
@@ -221,7 +223,50 @@ uint32_t SrtStarPlanner::draw_candidate() {
   const float dist = std::clamp(lo + (hi - lo) * prng_.uniform(), min_step, r_clear);
   const float a = node.ray_angle(sector, ray);
   const Point2 p{node.position.x + dist * std::cos(a), node.position.y + dist * std::sin(a)};
-  return work::kTableEntry + start_path(p, false);
+  // An operator keep-out is as good as a wall: the next candidate ray is tried.
+  const uint32_t keep_out_work = srt_.keep_out_count > 0 ? work::kKeepOutTest : 0;
+  if (crosses_keep_out({job_pose_.x, job_pose_.y}, p)) return work::kTableEntry + keep_out_work;
+  return work::kTableEntry + keep_out_work + start_path(p, false);
+}
+
+bool SrtStarPlanner::crosses_keep_out(Point2 a, Point2 b) const {
+  const float grow = srt_.clearance_m;
+  const float d[2] = {b.x - a.x, b.y - a.y};
+  const float o[2] = {a.x, a.y};
+  for (std::size_t i = 0; i < srt_.keep_out_count; ++i) {
+    const KeepOut& k = srt_.keep_out[i];
+    const float lo[2] = {k.x_min - grow, k.y_min - grow}, hi[2] = {k.x_max + grow, k.y_max + grow};
+    // Slabs: the part of the segment (parameter 0..1) inside the box on both axes.
+    float t0 = 0.0f, t1 = 1.0f;
+    for (int axis = 0; axis < 2 && t0 <= t1; ++axis) {
+      if (std::fabs(d[axis]) < 1e-9f) {
+        if (o[axis] < lo[axis] || o[axis] > hi[axis]) t0 = 2.0f;  // parallel and outside
+        continue;
+      }
+      float ta = (lo[axis] - o[axis]) / d[axis], tb = (hi[axis] - o[axis]) / d[axis];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+    }
+    if (t0 <= t1) return true;
+  }
+  return false;
+}
+
+uint32_t SrtStarPlanner::drop_frontiers_seen_through_keep_outs() {
+  if (srt_.keep_out_count == 0) return 0;
+  uint32_t used = 0;
+  const Point2 from = tree_.nodes()[current_].position;
+  for (std::size_t i = 0; i < tree_.frontiers().size();) {
+    const Frontier& f = tree_.frontiers()[i];
+    used += f.node == current_ ? work::kKeepOutTest : 0;
+    if (f.node == current_ && crosses_keep_out(from, f.position)) {
+      tree_.remove_frontier(i);
+    } else {
+      ++i;
+    }
+  }
+  return used + 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
 }
 
 uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {

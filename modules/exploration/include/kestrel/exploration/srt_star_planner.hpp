@@ -97,6 +97,10 @@ class SrtStarPlanner {
   uint32_t start_path(Point2 p, bool backtrack);
   uint32_t check_path(uint32_t budget, TimeUs now);
   void set_waypoint(Point2 p, TimeUs now);
+  // Whether the segment a-b enters a keep-out box grown by the clearance (SrtParams::keep_out).
+  bool crosses_keep_out(Point2 a, Point2 b) const;
+  // Drops the current node's frontiers whose sight line from the node crosses a keep-out box.
+  uint32_t drop_frontiers_seen_through_keep_outs();
 
   SrtParams srt_{};
   GuidanceParams guidance_{};
