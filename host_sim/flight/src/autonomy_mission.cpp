@@ -68,18 +68,21 @@ bool parse_double(const std::string& s, double& out) {
 std::string parse_keep_outs(const std::string& text, exploration::SrtParams& srt) {
   srt.keep_out_count = 0;
   std::stringstream boxes(text);
+  // Messages are built with append: GCC 12's -Wrestrict misreads operator+ chains here (ARM).
+  std::string why;
   for (std::string box; std::getline(boxes, box, ';');) {
     std::stringstream fields(box);
     std::vector<double> v;
     for (std::string f; std::getline(fields, f, ',');) {
       double d = 0;
-      if (!parse_double(f, d)) return "'" + f + "' is not a number";
+      if (!parse_double(f, d)) return why.append("'").append(f).append("' is not a number");
       v.push_back(d);
     }
-    if (v.size() != 4) return "expected x_min,y_min,x_max,y_max (m), got '" + box + "'";
-    if (v[0] > v[2] || v[1] > v[3]) return "'" + box + "': the minimum corner must come first";
+    if (v.size() != 4) return why.append("expected x_min,y_min,x_max,y_max (m), got '").append(box).append("'");
+    if (v[0] > v[2] || v[1] > v[3])
+      return why.append("'").append(box).append("': the minimum corner must come first");
     if (srt.keep_out_count == exploration::kMaxKeepOuts)
-      return "more than " + std::to_string(exploration::kMaxKeepOuts) + " boxes";
+      return why.append("more than ").append(std::to_string(exploration::kMaxKeepOuts)).append(" boxes");
     srt.keep_out[srt.keep_out_count++] = {static_cast<float>(v[0]), static_cast<float>(v[1]),
                                           static_cast<float>(v[2]), static_cast<float>(v[3])};
   }
