@@ -56,10 +56,11 @@ struct SrtParams {
   float clearance_m = 0.4f;               // ... inside the sector's clear radius: a disc of this
                                           // radius moved along any bearing of the sector up to
                                           // there touches no return (vehicle radius + margin)
-  uint8_t ray_search_sectors = 6;         // a frontier's waypoint may use rays this many sectors off
-                                          // (45 degrees with 32 sectors of 240: beside a door jamb
-                                          // 3 dropped the door's frontier; kinematic test, 10 seeds:
-                                          // start room never left 2 -> 0 (blend), 5 -> 1 (srt))
+  uint8_t ray_search_sectors = 3;         // a frontier's waypoint may use rays this many sectors off
+                                          // (6 let more kinematic flights through doors, 6 -> 9 of
+                                          // 10, but in kestrel-sim twice as many gt-building flights
+                                          // collided: the extra, oblique waypoints pass door jambs
+                                          // closely while the estimate drifts)
   float coverage_margin_m = 0.05f;        // a frontier this deep inside another safe region is gone
   uint8_t max_attempts_per_frontier = 2;  // waypoints drawn for one frontier before it is dropped
   uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
