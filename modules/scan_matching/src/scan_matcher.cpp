@@ -196,26 +196,40 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   }
 
   // Covariance (5.1.3): the best score per rotation near the optimum, and the translation
-  // slice at the best rotation.
+  // slice at the best rotation. Near the optimum a small rotation moves the best translation
+  // by a cell or two, so each rotation's best is taken over a +-2 cell neighbourhood by image
+  // addition (cheap, and exact whenever the per-rotation optimum stays in it).
+  const auto best_near = [&](int k) {
+    if (k == best.k) return best.score;
+    const uint16_t* sl = search_.slice(k, best.tx, best.ty, 2);
+    int32_t top = 0;
+    for (int i = 0; i < 25; ++i) top = std::max<int32_t>(top, sl[i]);
+    return top;
+  };
+  // The curve's width is measured at half height above its floor, the lower of its two ends;
+  // so it is scored only at the ends and outward from the peak until it falls below half
+  // height (each rotation scored costs a transform of the scan).
   const int r = std::min<int>(params_.cov_theta_steps, 64);
   const int k0 = std::max(-half_steps, best.k - r), k1 = std::min(half_steps, best.k + r);
-  const int count = k1 - k0 + 1;
-  // Near the optimum a small rotation moves the best translation by a cell or two, so each
-  // rotation's best is taken over a +-2 cell neighbourhood by image addition (cheap, and
-  // exact whenever the per-rotation optimum stays in it).
-  for (int k = k0; k <= k1; ++k) {
-    int32_t top = 0;
-    if (k == best.k) {
-      top = best.score;
-    } else {
-      const uint16_t* sl = search_.slice(k, best.tx, best.ty, 2);
-      for (int i = 0; i < 25; ++i) top = std::max<int32_t>(top, sl[i]);
-    }
-    curve_[static_cast<std::size_t>(k - k0)] = top;
+  const int32_t end0 = best_near(k0), end1 = best_near(k1);
+  const int32_t curve_floor = k0 == best.k ? end1 : (k1 == best.k ? end0 : std::min(end0, end1));
+  const double half_height = curve_floor + 0.5 * (best.score - curve_floor);
+  int left = best.k, right = best.k;
+  curve_[static_cast<std::size_t>(best.k - k0)] = best.score;
+  while (left > k0) {
+    const int32_t v = left - 1 == k0 ? end0 : best_near(left - 1);
+    curve_[static_cast<std::size_t>(--left - k0)] = v;
+    if (v < half_height) break;
+  }
+  while (right < k1) {
+    const int32_t v = right + 1 == k1 ? end1 : best_near(right + 1);
+    curve_[static_cast<std::size_t>(++right - k0)] = v;
+    if (v < half_height) break;
   }
   const int ch = std::min<int>(params_.cov_half_window, kMaxExhaustiveWindow);
   const uint16_t* slice = search_.slice(best.k, best.tx, best.ty, ch);
-  const CovarianceEstimate ce = cov_.estimate(slice, ch, curve_.data(), count, best.k - k0, params_.degenerate_ratio);
+  const CovarianceEstimate ce = cov_.estimate(slice, ch, curve_.data() + (left - k0), right - left + 1, best.k - left,
+                                              curve_floor, params_.degenerate_ratio);
 
   // Overlap: how many points land where the map expects a surface.
   int fit = 0, inside = 0;
