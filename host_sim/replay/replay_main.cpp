@@ -47,7 +47,18 @@ Params profile(const std::string& format) {
     p.max_window_m = 2.4f;
     p.min_window_rad = 0.65f;
     p.max_window_rad = 1.3f;
-    p.join_max_m = 0.5f;
+    // A wall seen at a grazing angle has its returns much farther apart than the beam spacing
+    // at their range (spacing / cos(incidence)): joining up to 8 spacings and 1 m keeps such
+    // walls as contours instead of isolated dots (the likely cause, not proven, of the score
+    // preferring poses that slide the scan back towards the key scans, where the map is dense).
+    p.join_gap_factor = 8.0f;
+    p.join_max_m = 1.0f;
+    // Weak motion prior (Params::cv_box_m): along a corridor whose end is out of range, a
+    // pose within 0.3 m / 0.15 rad of the constant-velocity prediction wins unless one
+    // outside scores more than 10 % better.
+    p.cv_box_m = 0.3f;
+    p.cv_box_rad = 0.15f;
+    p.cv_tie_fraction = 0.1f;
   } else {
     p.resolution_m = 0.01f;
     p.sigma_m = 0.02f;
