@@ -19,46 +19,27 @@
 #include "kestrel/output/pgm_map.hpp"
 #include "kestrel/output/png_writer.hpp"
 #include "kestrel/output/tum_writer.hpp"
+#include "kestrel/scan_matching/carmen_log_params.hpp"
 #include "kestrel/scan_matching/scan_matcher.hpp"
 
 namespace {
 using namespace kestrel;
 using namespace kestrel::scan_matching;
 
-// The logs' robots move far between recorded scans (sub-sampled logs, seconds apart), so the
-// replay profile uses a coarser map and a wide window; one profile per log format, never per log.
+// One profile per log format, never per log. The CARMEN one lives with the matcher, where the
+// real-data tests use it too; the URG-04LX logs move a few centimetres between scans.
 Params profile(const std::string& format) {
+  if (format == "carmen") return carmen_log_params();
   Params p;
-  if (format == "carmen") {
-    p.resolution_m = 0.02f;
-    p.sigma_m = 0.03f;
-    p.angle_step_rad = 0.25f * static_cast<float>(M_PI) / 180.0f;
-    p.max_range_m = 40.0f;
-    p.max_accel_mps2 = 1.0f;
-    p.max_ang_accel_radps2 = 1.0f;
-    // The stamps of a sub-sampled log do not bound the motion between its scans (intel turns
-    // 30 degrees between scans stamped 0.01 s apart), so the window never shrinks below what
-    // such logs move between scans (about 1.2 m and 35 degrees, data/README.md), and its cap
-    // leaves room for that around both the constant-velocity and the stopped hypothesis.
-    // For the same reason the constant-velocity hypothesis repeats the last displacement per
-    // scan instead of scaling it by the stamps' ratio (up to 2x, or 0.003x, on intel).
-    p.velocity_per_scan = true;
-    p.min_window_m = 1.2f;
-    p.max_window_m = 2.4f;
-    p.min_window_rad = 0.65f;
-    p.max_window_rad = 1.3f;
-    p.join_max_m = 0.5f;
-  } else {
-    p.resolution_m = 0.01f;
-    p.sigma_m = 0.02f;
-    p.angle_step_rad = 0.2f * static_cast<float>(M_PI) / 180.0f;
-    p.max_range_m = 4.0f;
-    p.max_accel_mps2 = 2.0f;
-    p.min_window_m = 0.1f;
-    p.max_window_m = 0.5f;
-    p.min_window_rad = 0.1f;
-    p.max_window_rad = 0.4f;
-  }
+  p.resolution_m = 0.01f;
+  p.sigma_m = 0.02f;
+  p.angle_step_rad = 0.2f * static_cast<float>(M_PI) / 180.0f;
+  p.max_range_m = 4.0f;
+  p.max_accel_mps2 = 2.0f;
+  p.min_window_m = 0.1f;
+  p.max_window_m = 0.5f;
+  p.min_window_rad = 0.1f;
+  p.max_window_rad = 0.4f;
   p.min_score = 0.05f;
   p.cov_half_window = 12;
   return p;

@@ -124,6 +124,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     pred.y += (last_pose_.y - prev_pose_.y) * f;
     pred.theta = wrap_angle(pred.theta + wrap_angle(last_pose_.theta - prev_pose_.theta) * f);
   }
+  const Pose2 cv = pred;  // the constant-velocity prediction, before any prior replaces it
   // The window is the box around the prediction that max acceleration allows, grown to also
   // hold the vehicle stopping (the last pose): on logs sampled seconds apart the velocity
   // can change completely between scans, and on the vehicle the growth is v * dt, a few cm.
@@ -162,23 +163,49 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   half_cells = std::clamp(half_cells, 1, cap_cells);
   half_steps = std::clamp(half_steps, 0, kMaxThetaSteps);
 
+  // The motion prior's box around the constant-velocity prediction (Params::cv_box_m), in
+  // cells and steps of the window's grid.
+  const bool use_box = prior == nullptr && accepted_ >= 2 && params_.cv_box_m > 0 && params_.cv_box_rad >= 0;
+  const int box_cells = use_box ? std::clamp(static_cast<int>(ceil_div(params_.cv_box_m, res)), 1, cap_cells) : 0;
+  const int box_steps = use_box ? std::clamp(static_cast<int>(ceil_div(params_.cv_box_rad, params_.angle_step_rad)), 0, kMaxThetaSteps) : 0;
+  const int cvx = static_cast<int>(std::lround((cv.x - pred.x) / res)), cvy = static_cast<int>(std::lround((cv.y - pred.y) / res));
+  const int cvk = static_cast<int>(std::lround(wrap_angle(cv.theta - pred.theta) / params_.angle_step_rad));
+  const auto search_around = [&](int hx, int hy, int hk, int cells, int steps) {
+    const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
+                  wrap_angle(pred.theta + static_cast<float>(hk) * params_.angle_step_rad)};
+    (void)search_.setup(key_.points, c, *map, cells, steps, params_.angle_step_rad);
+    const GridPose local = params_.multi_resolution ? search_.branch_and_bound() : search_.exhaustive();
+    return GridPose{local.k + hk, local.tx + hx, local.ty + hy, local.score};
+  };
+
   // Wide windows: a small search around each motion hypothesis (constant velocity, stopped)
   // first; its optimum seeds the pruning of the full search, which stays exact.
-  std::array<GridPose, 2> seeds{};
+  std::array<GridPose, 3> seeds{};
   int seed_count = 0;
   if (params_.multi_resolution && half_cells > kSeedWindow && (gx != 0 || gy != 0 || gt != 0)) {
     for (const float sign : {-1.0f, 1.0f}) {
       const int hx = static_cast<int>(std::lround(sign * gx / res)), hy = static_cast<int>(std::lround(sign * gy / res));
       const int hk = static_cast<int>(std::lround(sign * gt / params_.angle_step_rad));
-      const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
-                    wrap_angle(pred.theta + static_cast<float>(hk) * params_.angle_step_rad)};
-      (void)search_.setup(key_.points, c, *map, kSeedWindow, std::min(half_steps, kSeedWindow), params_.angle_step_rad);
-      const GridPose local = search_.branch_and_bound();
-      seeds[static_cast<std::size_t>(seed_count++)] = {local.k + hk, local.tx + hx, local.ty + hy, local.score};
+      if (use_box && hx == cvx && hy == cvy && hk == cvk) continue;  // the box search below covers it
+      seeds[static_cast<std::size_t>(seed_count++)] = search_around(hx, hy, hk, kSeedWindow, std::min(half_steps, kSeedWindow));
     }
   }
+  GridPose in_box;
+  if (use_box) {
+    in_box = search_around(cvx, cvy, cvk, box_cells, std::min(half_steps, box_steps));
+    if (params_.multi_resolution) seeds[static_cast<std::size_t>(seed_count++)] = in_box;
+  }
   (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad);
-  const GridPose best = params_.multi_resolution ? search_.branch_and_bound(seeds.data(), seed_count) : search_.exhaustive();
+  GridPose best = params_.multi_resolution ? search_.branch_and_bound(seeds.data(), seed_count) : search_.exhaustive();
+  // The prior: the box's optimum stands unless the window's is clearly better. Its score is
+  // taken again on the window's grid, so the pose and score agree with the covariance below.
+  if (use_box && in_box.score > 0 && std::abs(in_box.k) <= half_steps && std::abs(in_box.tx) <= half_cells &&
+      std::abs(in_box.ty) <= half_cells) {
+    const int32_t s = search_.score(in_box.k, in_box.tx, in_box.ty);
+    if (static_cast<float>(s) >= (1.0f - params_.cv_tie_fraction) * static_cast<float>(best.score)) {
+      best = {in_box.k, in_box.tx, in_box.ty, s};
+    }
+  }
   out.grid = best;
   const float denom = static_cast<float>(key_.points.count) * kCellMax;
   out.score = static_cast<float>(std::max(0, best.score)) / denom;
