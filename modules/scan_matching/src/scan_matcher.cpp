@@ -195,7 +195,10 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     in_box = search_around(cvx, cvy, cvk, box_cells, std::min(half_steps, box_steps));
     if (params_.multi_resolution) seeds[static_cast<std::size_t>(seed_count++)] = in_box;
   }
-  (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad);
+  // The covariance's slices reach cov_half_window cells beyond the optimum (and the rotation
+  // curve's two): the search scores the points that stay inside the map over all of it.
+  const int slice_half = std::clamp<int>(params_.cov_half_window, 2, kMaxExhaustiveWindow);
+  (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad, slice_half);
   GridPose best = params_.multi_resolution ? search_.branch_and_bound(seeds.data(), seed_count) : search_.exhaustive();
   // The prior: the box's optimum stands unless the window's is clearly better. Its score is
   // taken again on the window's grid, so the pose and score agree with the covariance below.
@@ -207,7 +210,9 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     }
   }
   out.grid = best;
-  const float denom = static_cast<float>(key_.points.count) * kCellMax;
+  // The mean cell under the points the map can judge; a scan that reaches past the map is
+  // not worse for it.
+  const float denom = static_cast<float>(std::max(1, search_.scored_points(best.k))) * kCellMax;
   out.score = static_cast<float>(std::max(0, best.score)) / denom;
 
   if (out.score < params_.min_score) {

@@ -48,10 +48,13 @@ class CorrelativeSearch {
  public:
   // Prepares a search of `pts` (sensor frame) around `centre` (world frame) on `map`:
   // translations within +-half_cells cells, rotations within +-half_steps steps of step_rad.
+  // Each rotation scores only the points that stay inside the map for every translation
+  // within +-(half_cells + slice_half): slices reaching up to slice_half cells beyond the
+  // window (the covariance's) are judged on the same points as the search.
   // Returns kInvalidArgument when the window exceeds the static capacities, or a point is
   // more than 32,000 cells from the sensor (int16 cells; 240 m at 7.5 mm).
   Status setup(const ScanPoints& pts, const Pose2& centre, const LikelihoodMap& map,
-               int half_cells, int half_steps, float step_rad);
+               int half_cells, int half_steps, float step_rad, int slice_half = 0);
 
   GridPose exhaustive();
   // Seeds are poses of this window (e.g. the optima of small searches around each motion
@@ -84,6 +87,11 @@ class CorrelativeSearch {
   void overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit);
   Pose2 pose_of(float k, float tx, float ty) const;
   int half_cells() const { return half_cells_; }
+  // How many points rotation k scores (see setup()).
+  int scored_points(int k) {
+    rotate(k);
+    return nq_;
+  }
   int half_steps() const { return half_steps_; }
   uint64_t nodes_visited() const { return nodes_; }
 
@@ -117,7 +125,7 @@ class CorrelativeSearch {
   Pose2 centre_;
   RotationQ rot_;  // window centre in map cells; cos and sin of the current rotation
   float step_rad_ = 0;
-  int half_cells_ = 0, half_steps_ = 0, top_level_ = 0;
+  int half_cells_ = 0, slice_half_ = 0, half_steps_ = 0, top_level_ = 0;
   int rotated_k_ = 1 << 30;
   int runs_first_ = 0, runs_level_ = 0;  // levels first..level hold runs of this rotation
   std::array<std::array<Run, kMaxPoints + 1>, kMaxLevels> runs_{};  // [level - 1], from slot 1
