@@ -103,8 +103,8 @@ TEST(ScanMatcher, VelocityPerScanIgnoresTheStamps) {
 
 // The weak motion prior (Params::cv_box_m) in a corridor whose far end is out of range: the
 // vehicle backs away from the end wall behind it at 0.3 m per scan; from the 16th scan that
-// wall is beyond the 6 m range, only the side walls are seen, and points beyond the map's
-// reach pull the optimum back onto the last key scan. Without the prior the estimate falls
+// wall is beyond the 6 m range, only the side walls are seen, and the scan's wall points
+// beyond what the last key scan saw (its own 6 m) pull the optimum back onto it. Without the prior the estimate falls
 // back at once (4.5 m -> 3.2 m); with it, the next two scans keep the motion. Further on the
 // pull exceeds the prior's 10 % and the estimate slows down too: the prior breaks near-ties,
 // it is no substitute for a filter's motion model (README: what remains).
