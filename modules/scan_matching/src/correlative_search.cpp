@@ -97,11 +97,10 @@ void CorrelativeSearch::rotate(int k) {
 void CorrelativeSearch::build_runs(int level) {
   if (runs_level_ >= level && runs_first_ <= level) return;
   const auto merge_into = [](std::array<Run, kMaxPoints + 1>& out, auto&& source, int n) {
-    // Branch-free merge (a branch on "same cell" mispredicts along ragged contours), the
-    // current run held in registers and stored every step. Runs start at slot 1; slot 0
-    // takes the sentinel, which matches no cell (see below).
-    // The cell is compared as one 32-bit key and the count kept by masking, so that the
-    // compiler has nothing to branch on.
+    // Branch-free merge (a branch on "same cell" mispredicts along ragged contours): the
+    // cell is compared as one 32-bit key, the count kept by masking, and the current run
+    // stored every step. Runs start at slot 1; slot 0 takes the sentinel, which matches no
+    // cell (see below).
     const auto key = [](const Run& r) {
       return static_cast<uint32_t>(static_cast<uint16_t>(r.x)) | (static_cast<uint32_t>(static_cast<uint16_t>(r.y)) << 16);
     };
@@ -120,9 +119,9 @@ void CorrelativeSearch::build_runs(int level) {
   };
   if (runs_level_ == 0 || level < runs_first_) {
     const int first = std::max(1, std::min(level, kLeafLevel));
-    // No clamping needed: rotate() kept only points within kMaxWindowCells + kMaxExhaustiveWindow
-    // + 8 cells of a map of at most 2048 cells (LikelihoodMapStorage), so every cell here is
-    // within +-1400 of the origin, far from the sentinel and from int16's limits.
+    // No clamping needed: rotate() kept only points inside the map, of at most 2048 cells
+    // (LikelihoodMapStorage), so every cell here is within +-1400 of the origin, far from
+    // the sentinel and from int16's limits.
     const int32_t off = (1 << first) - half_cells_;
     run_count_[static_cast<std::size_t>(first - 1)] = merge_into(
         runs_[static_cast<std::size_t>(first - 1)],
@@ -156,7 +155,7 @@ int32_t CorrelativeSearch::bound(int level, int tx, int ty) {
   const uint16_t nr = run_count_[static_cast<std::size_t>(level - 1)];
   int32_t sum = 0;
   for (uint16_t i = 1; i <= nr; ++i) {
-    // A negative cell means every reachable fine cell is outside the map.
+    // Outside this level's image: every reachable fine cell is outside the map.
     const unsigned x = static_cast<unsigned>(runs[i].x + mx), y = static_cast<unsigned>(runs[i].y + my);
     if (x < d && y < d) sum += runs[i].count * cells[y * d + x];
   }
