@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "kestrel/cli/arg_reader.hpp"
 #include "kestrel/logs/open_log.hpp"
 #include "kestrel/metrics/absolute_trajectory_error.hpp"
 #include "kestrel/metrics/relative_pose_error.hpp"
@@ -48,27 +49,38 @@ Params profile(const std::string& format) {
 constexpr int kReplayDim = 2000;  // 40 m at 2 cm: the host can afford a wider window
 LikelihoodMapStorage<kReplayDim, kMaxKeyframes * kMaxBeams> g_map_a, g_map_b;
 
-int usage() {
-  std::fprintf(stderr, "usage: kestrel-replay --log FILE [--format carmen|mines] --out DIR\n");
-  return 1;
-}
+void usage() { std::fprintf(stderr, "usage: kestrel-replay --log FILE [--format carmen|mines] --out DIR\n"); }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string log, format = "carmen", out_dir;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) return usage();
-    if (a == "--log") log = argv[++i];
-    else if (a == "--format") format = argv[++i];
-    else if (a == "--out") out_dir = argv[++i];
-    else return usage();
+  cli::ArgReader args(argc, argv);
+  while (args.next()) {
+    if (args.is("--log")) {
+      args.take(log);
+    } else if (args.is("--format")) {
+      if (args.take(format) && format != "carmen" && format != "mines")
+        args.fail("--format: unknown format '" + format + "' (carmen or mines)");
+    } else if (args.is("--out")) {
+      args.take(out_dir);
+    } else {
+      args.unknown();
+    }
   }
-  if (log.empty() || out_dir.empty() || (format != "carmen" && format != "mines")) return usage();
+  if (args.ok() && log.empty()) args.fail("--log FILE is required");
+  if (args.ok() && out_dir.empty()) args.fail("--out DIR is required");
+  if (!args.ok()) {
+    std::fprintf(stderr, "kestrel-replay: %s\n", args.error().c_str());
+    usage();
+    return 2;
+  }
 
   logs::LogFormat fmt = logs::LogFormat::kCarmen;
-  if (!ok(logs::parse_log_format(format, fmt))) return usage();
+  if (!ok(logs::parse_log_format(format, fmt))) {
+    usage();
+    return 2;
+  }
   logs::OpenLogOptions opts;
   opts.time_order = logs::TimeOrder::kAccept;  // the matcher rejects a backwards scan itself
   logs::LogError lerr;
