@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "kestrel/cli/arg_reader.hpp"
 #include "kestrel/logs/open_log.hpp"
 #include "kestrel/metrics/absolute_trajectory_error.hpp"
 #include "kestrel/metrics/relative_pose_error.hpp"
@@ -19,46 +20,27 @@
 #include "kestrel/output/pgm_map.hpp"
 #include "kestrel/output/png_writer.hpp"
 #include "kestrel/output/tum_writer.hpp"
+#include "kestrel/scan_matching/carmen_log_params.hpp"
 #include "kestrel/scan_matching/scan_matcher.hpp"
 
 namespace {
 using namespace kestrel;
 using namespace kestrel::scan_matching;
 
-// The logs' robots move far between recorded scans (sub-sampled logs, seconds apart), so the
-// replay profile uses a coarser map and a wide window; one profile per log format, never per log.
+// One profile per log format, never per log. The CARMEN one lives with the matcher, where the
+// real-data tests use it too; the URG-04LX logs move a few centimetres between scans.
 Params profile(const std::string& format) {
+  if (format == "carmen") return carmen_log_params();
   Params p;
-  if (format == "carmen") {
-    p.resolution_m = 0.02f;
-    p.sigma_m = 0.03f;
-    p.angle_step_rad = 0.25f * static_cast<float>(M_PI) / 180.0f;
-    p.max_range_m = 40.0f;
-    p.max_accel_mps2 = 1.0f;
-    p.max_ang_accel_radps2 = 1.0f;
-    // The stamps of a sub-sampled log do not bound the motion between its scans (intel turns
-    // 30 degrees between scans stamped 0.01 s apart), so the window never shrinks below what
-    // such logs move between scans (about 1.2 m and 35 degrees, data/README.md), and its cap
-    // leaves room for that around both the constant-velocity and the stopped hypothesis.
-    // For the same reason the constant-velocity hypothesis repeats the last displacement per
-    // scan instead of scaling it by the stamps' ratio (up to 2x, or 0.003x, on intel).
-    p.velocity_per_scan = true;
-    p.min_window_m = 1.2f;
-    p.max_window_m = 2.4f;
-    p.min_window_rad = 0.65f;
-    p.max_window_rad = 1.3f;
-    p.join_max_m = 0.5f;
-  } else {
-    p.resolution_m = 0.01f;
-    p.sigma_m = 0.02f;
-    p.angle_step_rad = 0.2f * static_cast<float>(M_PI) / 180.0f;
-    p.max_range_m = 4.0f;
-    p.max_accel_mps2 = 2.0f;
-    p.min_window_m = 0.1f;
-    p.max_window_m = 0.5f;
-    p.min_window_rad = 0.1f;
-    p.max_window_rad = 0.4f;
-  }
+  p.resolution_m = 0.01f;
+  p.sigma_m = 0.02f;
+  p.angle_step_rad = 0.2f * static_cast<float>(M_PI) / 180.0f;
+  p.max_range_m = 4.0f;
+  p.max_accel_mps2 = 2.0f;
+  p.min_window_m = 0.1f;
+  p.max_window_m = 0.5f;
+  p.min_window_rad = 0.1f;
+  p.max_window_rad = 0.4f;
   p.min_score = 0.05f;
   p.cov_half_window = 12;
   return p;
@@ -67,27 +49,38 @@ Params profile(const std::string& format) {
 constexpr int kReplayDim = 2000;  // 40 m at 2 cm: the host can afford a wider window
 LikelihoodMapStorage<kReplayDim, kMaxKeyframes * kMaxBeams> g_map_a, g_map_b;
 
-int usage() {
-  std::fprintf(stderr, "usage: kestrel-replay --log FILE [--format carmen|mines] --out DIR\n");
-  return 1;
-}
+void usage() { std::fprintf(stderr, "usage: kestrel-replay --log FILE [--format carmen|mines] --out DIR\n"); }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string log, format = "carmen", out_dir;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) return usage();
-    if (a == "--log") log = argv[++i];
-    else if (a == "--format") format = argv[++i];
-    else if (a == "--out") out_dir = argv[++i];
-    else return usage();
+  cli::ArgReader args(argc, argv);
+  while (args.next()) {
+    if (args.is("--log")) {
+      args.take(log);
+    } else if (args.is("--format")) {
+      if (args.take(format) && format != "carmen" && format != "mines")
+        args.fail("--format: unknown format '" + format + "' (carmen or mines)");
+    } else if (args.is("--out")) {
+      args.take(out_dir);
+    } else {
+      args.unknown();
+    }
   }
-  if (log.empty() || out_dir.empty() || (format != "carmen" && format != "mines")) return usage();
+  if (args.ok() && log.empty()) args.fail("--log FILE is required");
+  if (args.ok() && out_dir.empty()) args.fail("--out DIR is required");
+  if (!args.ok()) {
+    std::fprintf(stderr, "kestrel-replay: %s\n", args.error().c_str());
+    usage();
+    return 2;
+  }
 
   logs::LogFormat fmt = logs::LogFormat::kCarmen;
-  if (!ok(logs::parse_log_format(format, fmt))) return usage();
+  if (!ok(logs::parse_log_format(format, fmt))) {
+    usage();
+    return 2;
+  }
   logs::OpenLogOptions opts;
   opts.time_order = logs::TimeOrder::kAccept;  // the matcher rejects a backwards scan itself
   logs::LogError lerr;

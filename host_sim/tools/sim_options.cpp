@@ -1,5 +1,7 @@
 #include "sim_options.hpp"
 
+#include "kestrel/cli/arg_reader.hpp"
+
 #include <cmath>
 #include <cstdlib>
 
@@ -29,72 +31,55 @@ std::string sim_usage() {
 ParseOutcome parse_sim_options(int argc, char** argv) {
   ParseOutcome r;
   SimOptions& o = r.options;
-  auto fail = [&](const std::string& why) {
-    r.ok = false;
-    r.error = why;
-    return r;
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc) return false;
-      out = argv[++i];
-      return true;
-    };
+  cli::ArgReader args(argc, argv);
+  while (args.next()) {
     std::string v;
-    if (a == "--help" || a == "-h") {
+    if (args.is("--help") || args.is("-h")) {
       o.help = true;
-    } else if (a == "--record") {
+    } else if (args.is("--record")) {
       o.record = true;
-    } else if (a == "--world" || a == "--laser" || a == "--duration" || a == "--seed" || a == "--out" ||
-               a == "--mission" || a == "--config" || a == "--script" || a == "--mission-arg" || a == "--waypoints" ||
-               a == "--explorer") {
-      if (!value(v)) return fail("option " + a + " needs a value");
-      if (a == "--world") {
-        o.world = v;
-      } else if (a == "--laser") {
-        if (v != "utm30lx" && v != "urg04lx")
-          return fail("--laser: unknown laser '" + v + "' (utm30lx or urg04lx)");
-        o.laser = v;
-      } else if (a == "--duration") {
-        char* end = nullptr;
-        o.duration_s = std::strtod(v.c_str(), &end);
-        if (end != v.c_str() + v.size() || !std::isfinite(o.duration_s) || o.duration_s <= 0 ||
-            o.duration_s > 1e6)
-          return fail("--duration: '" + v + "' is not a positive number of seconds");
-      } else if (a == "--seed") {
-        char* end = nullptr;
-        o.seed = std::strtoull(v.c_str(), &end, 10);
-        if (v.empty() || v[0] == '-' || end != v.c_str() + v.size())
-          return fail("--seed: '" + v + "' is not a non-negative integer");
-      } else if (a == "--out") {
-        o.out_dir = v;
-      } else if (a == "--mission") {
-        if (!find_mission(v)) {
-          std::string known;
-          for (const MissionInfo& m : mission_table()) known += std::string(known.empty() ? "" : ", ") + m.name;
-          return fail("--mission: unknown mission '" + v + "' (known: " + known + ")");
-        }
-        o.mission = v;
-      } else if (a == "--config") {
-        o.config_path = v;
-      } else if (a == "--script") {
-        o.mission_options.values["script"] = v;
-      } else if (a == "--waypoints") {
-        o.mission_options.values["waypoints"] = v;
-      } else if (a == "--explorer") {
-        o.mission_options.values["explorer"] = v;
+    } else if (args.is("--world")) {
+      args.take(o.world);
+    } else if (args.is("--laser")) {
+      if (!args.take(v)) break;
+      if (v != "utm30lx" && v != "urg04lx") args.fail("--laser: unknown laser '" + v + "' (utm30lx or urg04lx)");
+      o.laser = v;
+    } else if (args.is("--duration")) {
+      if (!args.take(v)) break;
+      if (!cli::to_double(v, o.duration_s) || o.duration_s <= 0 || o.duration_s > 1e6)
+        args.fail("--duration: '" + v + "' is not a positive number of seconds");
+    } else if (args.is("--seed")) {
+      args.take_u64(o.seed);
+    } else if (args.is("--out")) {
+      args.take(o.out_dir);
+    } else if (args.is("--mission")) {
+      if (!args.take(v)) break;
+      if (!find_mission(v)) {
+        std::string known;
+        for (const MissionInfo& m : mission_table()) known += std::string(known.empty() ? "" : ", ") + m.name;
+        args.fail("--mission: unknown mission '" + v + "' (known: " + known + ")");
+      }
+      o.mission = v;
+    } else if (args.is("--config")) {
+      args.take(o.config_path);
+    } else if (args.is("--script") || args.is("--waypoints") || args.is("--explorer")) {
+      // Shorthands for --mission-arg script=, waypoints=, explorer=.
+      if (args.take(v)) o.mission_options.values[args.option().substr(2)] = v;
+    } else if (args.is("--mission-arg")) {
+      if (!args.take(v)) break;
+      const auto eq = v.find('=');
+      if (eq == std::string::npos || eq == 0) {
+        args.fail("--mission-arg: expected KEY=VALUE, got '" + v + "'");
       } else {
-        const auto eq = v.find('=');
-        if (eq == std::string::npos || eq == 0) return fail("--mission-arg: expected KEY=VALUE, got '" + v + "'");
         o.mission_options.values[v.substr(0, eq)] = v.substr(eq + 1);
       }
     } else {
-      return fail("unknown option '" + a + "' (see --help)");
+      args.unknown();
     }
   }
-  if (!o.help && o.out_dir.empty()) return fail("--out DIR is required");
-  r.ok = true;
+  if (args.ok() && !o.help && o.out_dir.empty()) args.fail("--out DIR is required");
+  r.ok = args.ok();
+  r.error = args.error();
   return r;
 }
 

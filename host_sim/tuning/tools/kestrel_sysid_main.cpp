@@ -16,6 +16,7 @@
 #include <string>
 
 #include "kestrel/autonomy/stack_config.hpp"
+#include "kestrel/cli/arg_reader.hpp"
 #include "kestrel/control/controller_params.hpp"
 #include "kestrel/params/param_file.hpp"
 #include "kestrel/sim/config_file.hpp"
@@ -41,43 +42,37 @@ void usage() {
                "                    [--config SIM_CONFIG_FILE]\n");
 }
 
-bool parse_args(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](std::string& v) {
-      if (i + 1 >= argc) return false;
-      v = argv[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "--waypoints") {
+// Returns "" or the first mistake, naming the option.
+std::string parse_args(int argc, char** argv, Options& o) {
+  cli::ArgReader args(argc, argv);
+  while (args.next()) {
+    if (args.is("--waypoints")) {
       o.waypoints = true;
-    } else if (a == "--out" && value(v)) {
-      o.out = v;
-    } else if (a == "--config" && value(v)) {
-      o.config = v;
-    } else if (a == "--script" && value(v)) {
-      o.script = v;
-    } else if (a == "--seed" && value(v)) {
-      o.seed = std::strtoull(v.c_str(), nullptr, 10);
-    } else if (a == "--seconds" && value(v)) {
-      o.seconds = std::atof(v.c_str());
-      if (!(o.seconds > 0)) return false;
-    } else if (a == "--dt" && value(v)) {
-      o.dt = std::atof(v.c_str());
-      if (!(o.dt > 0 && o.dt < 1)) return false;
+    } else if (args.is("--out")) {
+      args.take(o.out);
+    } else if (args.is("--config")) {
+      args.take(o.config);
+    } else if (args.is("--script")) {
+      args.take(o.script);
+    } else if (args.is("--seed")) {
+      args.take_u64(o.seed);
+    } else if (args.is("--seconds")) {
+      args.take_double(o.seconds, 1e-3, 1e6);
+    } else if (args.is("--dt")) {
+      args.take_double(o.dt, 1e-4, 0.999);
     } else {
-      return false;
+      args.unknown();
     }
   }
-  return true;
+  return args.error();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options o;
-  if (!parse_args(argc, argv, o)) {
+  if (const std::string e = parse_args(argc, argv, o); !e.empty()) {
+    std::fprintf(stderr, "kestrel-sysid: %s\n", e.c_str());
     usage();
     return 2;
   }

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "kestrel/cli/arg_reader.hpp"
 #include "kestrel/params/param_file.hpp"
 #include "kestrel/tuning/ekf_tuning.hpp"
 
@@ -43,56 +44,35 @@ void usage() {
                "                        [--accept-seeds 21,22 | --no-accept] [--hover-s S]\n");
 }
 
-bool parse_seeds(const std::string& s, std::vector<uint64_t>& out) {
-  out.clear();
-  std::stringstream ss(s);
-  for (std::string tok; std::getline(ss, tok, ',');) {
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(tok.c_str(), &end, 10);
-    if (tok.empty() || *end != '\0') return false;
-    out.push_back(v);
-  }
-  return !out.empty();
-}
-
-bool parse_args(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](std::string& v) {
-      if (i + 1 >= argc) return false;
-      v = argv[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "--no-accept") {
+// Returns "" or the first mistake, naming the option.
+std::string parse_args(int argc, char** argv, Options& o) {
+  cli::ArgReader args(argc, argv);
+  while (args.next()) {
+    if (args.is("--no-accept")) {
       o.accept.clear();
-    } else if (a == "--accept-seeds" && value(v)) {
-      if (!parse_seeds(v, o.accept)) return false;
-    } else if (a == "--out" && value(v)) {
-      o.out = v;
-    } else if (a == "--world" && value(v)) {
-      o.world = v;
-    } else if (a == "--train-seeds" && value(v)) {
-      if (!parse_seeds(v, o.train)) return false;
-    } else if (a == "--test-seeds" && value(v)) {
-      if (!parse_seeds(v, o.test)) return false;
-    } else if (a == "--seconds" && value(v)) {
-      o.seconds = std::atof(v.c_str());
-      if (!(o.seconds > 5)) return false;
-    } else if (a == "--hover-s" && value(v)) {
-      o.hover_s = std::atof(v.c_str());
-      if (!(o.hover_s > 0)) return false;
-    } else if (a == "--position-time" && value(v)) {
-      o.position_time_s = std::strtof(v.c_str(), nullptr);
-      if (!(o.position_time_s >= 0)) return false;
-    } else if (a == "--max-evals" && value(v)) {
-      o.max_evals = std::atoi(v.c_str());
-      if (o.max_evals < 1) return false;
+    } else if (args.is("--accept-seeds")) {
+      args.take_u64_list(o.accept);
+    } else if (args.is("--out")) {
+      args.take(o.out);
+    } else if (args.is("--world")) {
+      args.take(o.world);
+    } else if (args.is("--train-seeds")) {
+      args.take_u64_list(o.train);
+    } else if (args.is("--test-seeds")) {
+      args.take_u64_list(o.test);
+    } else if (args.is("--seconds")) {
+      args.take_double(o.seconds, 5.001, 1e6);
+    } else if (args.is("--hover-s")) {
+      args.take_double(o.hover_s, 1e-3, 1e6);
+    } else if (args.is("--position-time")) {
+      args.take_float(o.position_time_s, 0, 1e6);
+    } else if (args.is("--max-evals")) {
+      args.take_int(o.max_evals, 1, 1000000);
     } else {
-      return false;
+      args.unknown();
     }
   }
-  return true;
+  return args.error();
 }
 
 bool fly(const Options& o, tuning::FlightKind kind, uint64_t seed, const estimation::EkfParams& ekf,
@@ -137,7 +117,8 @@ void print_error(const char* label, const estimation::VelocityError& e) {
 
 int main(int argc, char** argv) {
   Options o;
-  if (!parse_args(argc, argv, o)) {
+  if (const std::string e = parse_args(argc, argv, o); !e.empty()) {
+    std::fprintf(stderr, "kestrel-tune-ekf: %s\n", e.c_str());
     usage();
     return 2;
   }

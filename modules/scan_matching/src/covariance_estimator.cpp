@@ -16,7 +16,7 @@ float parabola_peak(float a, float b, float c) {
 }  // namespace
 
 CovarianceEstimate CovarianceEstimator::estimate(const uint16_t* slice, int half, const int32_t* curve,
-                                                 int count, int peak, float degenerate_ratio) {
+                                                 int count, int peak, int32_t floor, float degenerate_ratio) {
   CovarianceEstimate e;
   const int w = 2 * half + 1;
   const std::size_t n = static_cast<std::size_t>(w) * w;
@@ -70,9 +70,8 @@ CovarianceEstimate CovarianceEstimator::estimate(const uint16_t* slice, int half
   }
 
   // Rotation: full width at half height of the best-score-per-rotation curve above its floor.
-  int32_t lo = curve[peak];
-  for (int i = 0; i < count; ++i) lo = std::min(lo, curve[i]);
   const int32_t top = curve[peak];
+  const int32_t lo = std::min(floor, top);
   const double half_height = lo + 0.5 * (top - lo);
   int left = peak, right = peak;
   while (left > 0 && curve[left - 1] >= half_height) --left;

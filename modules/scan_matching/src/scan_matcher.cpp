@@ -124,6 +124,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     pred.y += (last_pose_.y - prev_pose_.y) * f;
     pred.theta = wrap_angle(pred.theta + wrap_angle(last_pose_.theta - prev_pose_.theta) * f);
   }
+  const Pose2 cv = pred;  // the constant-velocity prediction, before any prior replaces it
   // The window is the box around the prediction that max acceleration allows, grown to also
   // hold the vehicle stopping (the last pose): on logs sampled seconds apart the velocity
   // can change completely between scans, and on the vehicle the growth is v * dt, a few cm.
@@ -162,25 +163,56 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   half_cells = std::clamp(half_cells, 1, cap_cells);
   half_steps = std::clamp(half_steps, 0, kMaxThetaSteps);
 
+  // The motion prior's box around the constant-velocity prediction (Params::cv_box_m), in
+  // cells and steps of the window's grid.
+  const bool use_box = prior == nullptr && accepted_ >= 2 && params_.cv_box_m > 0 && params_.cv_box_rad >= 0;
+  const int box_cells = use_box ? std::clamp(static_cast<int>(ceil_div(params_.cv_box_m, res)), 1, cap_cells) : 0;
+  const int box_steps = use_box ? std::clamp(static_cast<int>(ceil_div(params_.cv_box_rad, params_.angle_step_rad)), 0, kMaxThetaSteps) : 0;
+  const int cvx = static_cast<int>(std::lround((cv.x - pred.x) / res)), cvy = static_cast<int>(std::lround((cv.y - pred.y) / res));
+  const int cvk = static_cast<int>(std::lround(wrap_angle(cv.theta - pred.theta) / params_.angle_step_rad));
+  const auto search_around = [&](int hx, int hy, int hk, int cells, int steps) {
+    const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
+                  wrap_angle(pred.theta + static_cast<float>(hk) * params_.angle_step_rad)};
+    (void)search_.setup(key_.points, c, *map, cells, steps, params_.angle_step_rad);
+    const GridPose local = params_.multi_resolution ? search_.branch_and_bound() : search_.exhaustive();
+    return GridPose{local.k + hk, local.tx + hx, local.ty + hy, local.score};
+  };
+
   // Wide windows: a small search around each motion hypothesis (constant velocity, stopped)
   // first; its optimum seeds the pruning of the full search, which stays exact.
-  std::array<GridPose, 2> seeds{};
+  std::array<GridPose, 3> seeds{};
   int seed_count = 0;
   if (params_.multi_resolution && half_cells > kSeedWindow && (gx != 0 || gy != 0 || gt != 0)) {
     for (const float sign : {-1.0f, 1.0f}) {
       const int hx = static_cast<int>(std::lround(sign * gx / res)), hy = static_cast<int>(std::lround(sign * gy / res));
       const int hk = static_cast<int>(std::lround(sign * gt / params_.angle_step_rad));
-      const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
-                    wrap_angle(pred.theta + static_cast<float>(hk) * params_.angle_step_rad)};
-      (void)search_.setup(key_.points, c, *map, kSeedWindow, std::min(half_steps, kSeedWindow), params_.angle_step_rad);
-      const GridPose local = search_.branch_and_bound();
-      seeds[static_cast<std::size_t>(seed_count++)] = {local.k + hk, local.tx + hx, local.ty + hy, local.score};
+      if (use_box && hx == cvx && hy == cvy && hk == cvk) continue;  // the box search below covers it
+      seeds[static_cast<std::size_t>(seed_count++)] = search_around(hx, hy, hk, kSeedWindow, std::min(half_steps, kSeedWindow));
     }
   }
-  (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad);
-  const GridPose best = params_.multi_resolution ? search_.branch_and_bound(seeds.data(), seed_count) : search_.exhaustive();
+  GridPose in_box;
+  if (use_box) {
+    in_box = search_around(cvx, cvy, cvk, box_cells, std::min(half_steps, box_steps));
+    if (params_.multi_resolution) seeds[static_cast<std::size_t>(seed_count++)] = in_box;
+  }
+  // The covariance's slices reach cov_half_window cells beyond the optimum (and the rotation
+  // curve's two): the search scores the points that stay inside the map over all of it.
+  const int slice_half = std::clamp<int>(params_.cov_half_window, 2, kMaxExhaustiveWindow);
+  (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad, slice_half);
+  GridPose best = params_.multi_resolution ? search_.branch_and_bound(seeds.data(), seed_count) : search_.exhaustive();
+  // The prior: the box's optimum stands unless the window's is clearly better. Its score is
+  // taken again on the window's grid, so the pose and score agree with the covariance below.
+  if (use_box && in_box.score > 0 && std::abs(in_box.k) <= half_steps && std::abs(in_box.tx) <= half_cells &&
+      std::abs(in_box.ty) <= half_cells) {
+    const int32_t s = search_.score(in_box.k, in_box.tx, in_box.ty);
+    if (static_cast<float>(s) >= (1.0f - params_.cv_tie_fraction) * static_cast<float>(best.score)) {
+      best = {in_box.k, in_box.tx, in_box.ty, s};
+    }
+  }
   out.grid = best;
-  const float denom = static_cast<float>(key_.points.count) * kCellMax;
+  // The mean cell under the points the map can judge; a scan that reaches past the map is
+  // not worse for it.
+  const float denom = static_cast<float>(std::max(1, search_.scored_points(best.k))) * kCellMax;
   out.score = static_cast<float>(std::max(0, best.score)) / denom;
 
   if (out.score < params_.min_score) {
@@ -196,26 +228,40 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   }
 
   // Covariance (5.1.3): the best score per rotation near the optimum, and the translation
-  // slice at the best rotation.
+  // slice at the best rotation. Near the optimum a small rotation moves the best translation
+  // by a cell or two, so each rotation's best is taken over a +-2 cell neighbourhood by image
+  // addition (cheap, and exact whenever the per-rotation optimum stays in it).
+  const auto best_near = [&](int k) {
+    if (k == best.k) return best.score;
+    const uint16_t* sl = search_.slice(k, best.tx, best.ty, 2);
+    int32_t top = 0;
+    for (int i = 0; i < 25; ++i) top = std::max<int32_t>(top, sl[i]);
+    return top;
+  };
+  // The curve's width is measured at half height above its floor, the lower of its two ends;
+  // so it is scored only at the ends and outward from the peak until it falls below half
+  // height (each rotation scored costs a transform of the scan).
   const int r = std::min<int>(params_.cov_theta_steps, 64);
   const int k0 = std::max(-half_steps, best.k - r), k1 = std::min(half_steps, best.k + r);
-  const int count = k1 - k0 + 1;
-  // Near the optimum a small rotation moves the best translation by a cell or two, so each
-  // rotation's best is taken over a +-2 cell neighbourhood by image addition (cheap, and
-  // exact whenever the per-rotation optimum stays in it).
-  for (int k = k0; k <= k1; ++k) {
-    int32_t top = 0;
-    if (k == best.k) {
-      top = best.score;
-    } else {
-      const uint16_t* sl = search_.slice(k, best.tx, best.ty, 2);
-      for (int i = 0; i < 25; ++i) top = std::max<int32_t>(top, sl[i]);
-    }
-    curve_[static_cast<std::size_t>(k - k0)] = top;
+  const int32_t end0 = best_near(k0), end1 = best_near(k1);
+  const int32_t curve_floor = k0 == best.k ? end1 : (k1 == best.k ? end0 : std::min(end0, end1));
+  const double half_height = curve_floor + 0.5 * (best.score - curve_floor);
+  int left = best.k, right = best.k;
+  curve_[static_cast<std::size_t>(best.k - k0)] = best.score;
+  while (left > k0) {
+    const int32_t v = left - 1 == k0 ? end0 : best_near(left - 1);
+    curve_[static_cast<std::size_t>(--left - k0)] = v;
+    if (v < half_height) break;
+  }
+  while (right < k1) {
+    const int32_t v = right + 1 == k1 ? end1 : best_near(right + 1);
+    curve_[static_cast<std::size_t>(++right - k0)] = v;
+    if (v < half_height) break;
   }
   const int ch = std::min<int>(params_.cov_half_window, kMaxExhaustiveWindow);
   const uint16_t* slice = search_.slice(best.k, best.tx, best.ty, ch);
-  const CovarianceEstimate ce = cov_.estimate(slice, ch, curve_.data(), count, best.k - k0, params_.degenerate_ratio);
+  const CovarianceEstimate ce = cov_.estimate(slice, ch, curve_.data() + (left - k0), right - left + 1, best.k - left,
+                                              curve_floor, params_.degenerate_ratio);
 
   // Overlap: how many points land where the map expects a surface.
   int fit = 0, inside = 0;

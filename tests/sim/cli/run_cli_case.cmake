@@ -1,4 +1,4 @@
-# Runs kestrel-sim with ARGS (a ;-list) and checks its exit status and that stderr contains
+# Runs a host tool (kestrel-sim, kestrel-replay) with ARGS (a ;-list) and checks its exit status and that stderr contains
 # EXPECT. Used for the usage-error contract: exit status 2 with a message naming the culprit.
 separate_arguments(args UNIX_COMMAND "${ARGS}")
 execute_process(COMMAND ${SIM} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

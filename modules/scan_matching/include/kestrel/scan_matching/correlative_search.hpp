@@ -25,6 +25,7 @@
 
 #include "kestrel/core/se2.hpp"
 #include "kestrel/scan_matching/likelihood_map.hpp"
+#include "kestrel/scan_matching/rotate_points.hpp"
 #include "kestrel/scan_matching/row_add.hpp"
 #include "kestrel/scan_matching/scan_points.hpp"
 
@@ -47,9 +48,13 @@ class CorrelativeSearch {
  public:
   // Prepares a search of `pts` (sensor frame) around `centre` (world frame) on `map`:
   // translations within +-half_cells cells, rotations within +-half_steps steps of step_rad.
-  // Returns kInvalidArgument when the window exceeds the static capacities.
+  // Each rotation scores only the points that stay inside the map for every translation
+  // within +-(half_cells + slice_half): slices reaching up to slice_half cells beyond the
+  // window (the covariance's) are judged on the same points as the search.
+  // Returns kInvalidArgument when the window exceeds the static capacities, or a point is
+  // more than 32,000 cells from the sensor (int16 cells; 240 m at 7.5 mm).
   Status setup(const ScanPoints& pts, const Pose2& centre, const LikelihoodMap& map,
-               int half_cells, int half_steps, float step_rad);
+               int half_cells, int half_steps, float step_rad, int slice_half = 0);
 
   GridPose exhaustive();
   // Seeds are poses of this window (e.g. the optima of small searches around each motion
@@ -69,11 +74,24 @@ class CorrelativeSearch {
     rotate(k);
     return bound(level, tx, ty);
   }
+  // The four block_bound()s of level `level` at (tx, ty) + {0, 2^level}^2 in one pass, as the
+  // search takes them; tests.
+  std::array<int32_t, 4> child_block_bounds(int k, int level, int tx, int ty) {
+    rotate(k);
+    std::array<int32_t, 4> b{};
+    child_bounds(level, tx, ty, b);
+    return b;
+  }
   // Of the points that fall inside the map at pose (k, tx, ty), how many (`fit`) land on
   // cells of at least `threshold`: whether the scan is already in the map.
   void overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit);
   Pose2 pose_of(float k, float tx, float ty) const;
   int half_cells() const { return half_cells_; }
+  // How many points rotation k scores (see setup()).
+  int scored_points(int k) {
+    rotate(k);
+    return nq_;
+  }
   int half_steps() const { return half_steps_; }
   uint64_t nodes_visited() const { return nodes_; }
 
@@ -90,21 +108,24 @@ class CorrelativeSearch {
   void rotate(int k);
   void build_runs(int level);
   int32_t bound(int level, int tx, int ty);
+  // bound() of the four blocks of 2^level at (tx, ty) + {0, 2^level}^2, in (x, y) order.
+  void child_bounds(int level, int tx, int ty, std::array<int32_t, 4>& out);
   int32_t exact(int tx, int ty) const;  // score of a translation at the current rotation
   void accumulate(int x0, int y0, int w);
   void dfs(int k, int32_t root_bound, GridPose& best);
   static bool better(const GridPose& a, const GridPose& b);
 
   const LikelihoodMap* map_ = nullptr;
-  std::array<int32_t, kMaxPoints> px_{}, py_{};  // points in Q8 cells, sensor frame
+  std::array<int16_t, 2 * kMaxPoints> pxy_{};  // points (x, y) in 1/2^point_bits_ cells, sensor frame
   std::array<int32_t, kMaxPoints> qx_{}, qy_{};  // fine cell of each point at the current rotation
   std::array<int32_t, kMaxPoints> offsets_{};   // image addition: window corner of each point
+  std::array<uint16_t, kMaxPoints> clipped_{};  // image addition: points whose window crosses the map's edge
   uint16_t n_ = 0;   // points of the scan
   uint16_t nq_ = 0;  // of them, those the current rotation keeps (qx_, qy_)
   Pose2 centre_;
-  int64_t cx_q38_ = 0, cy_q38_ = 0;  // window centre in map cells, Q38
+  RotationQ rot_;  // window centre in map cells; cos and sin of the current rotation
   float step_rad_ = 0;
-  int half_cells_ = 0, half_steps_ = 0, top_level_ = 0;
+  int half_cells_ = 0, slice_half_ = 0, half_steps_ = 0, top_level_ = 0;
   int rotated_k_ = 1 << 30;
   int runs_first_ = 0, runs_level_ = 0;  // levels first..level hold runs of this rotation
   std::array<std::array<Run, kMaxPoints + 1>, kMaxLevels> runs_{};  // [level - 1], from slot 1

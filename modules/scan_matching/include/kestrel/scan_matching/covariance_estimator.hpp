@@ -32,9 +32,10 @@ inline constexpr double kUnboundedVarianceCells2 = 1e4;
 class CovarianceEstimator {
  public:
   // slice: (2 half + 1)^2 scores centred on the optimum. curve: best score per rotation,
-  // `count` entries, the optimum at index `peak`.
+  // `count` entries, the optimum at index `peak`; the width is taken at half height above
+  // `floor`, outward from the peak to the first entry below it or the curve's end.
   CovarianceEstimate estimate(const uint16_t* slice, int half, const int32_t* curve, int count,
-                              int peak, float degenerate_ratio);
+                              int peak, int32_t floor, float degenerate_ratio);
 
  private:
   std::array<uint16_t, (2 * kMaxExhaustiveWindow + 1) * (2 * kMaxExhaustiveWindow + 1)> scratch_{};

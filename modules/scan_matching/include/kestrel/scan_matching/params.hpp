@@ -43,6 +43,15 @@ struct Params {
   // between scans (intel turns 30 degrees between scans stamped 0.01 s apart).
   bool velocity_per_scan = false;
   float min_score = 0.15f;          // mean cell value / kCellMax below this: match is lost
+  // Weak motion prior, used only without a caller's prior (PosePrior): a box around the
+  // constant-velocity prediction, within which a pose wins unless one outside scores more than
+  // `cv_tie_fraction` better. Along a corridor whose end is out of range the score is flat
+  // within about 10 % over a metre, and the plain optimum lands anywhere along it; this breaks
+  // such near-ties towards the motion, and leaves clear optima (a turn, a new room) alone.
+  // 0: off (the vehicle: its EKF's prior already carries the motion).
+  float cv_box_m = 0.0f;            // half-width of the box, metres
+  float cv_box_rad = 0.0f;          // half-width of the box, radians
+  float cv_tie_fraction = 0.1f;     // outside the box, a pose must score (1 / (1 - f)) x more
   // --- covariance (5.1.3)
   uint8_t cov_half_window = 12;     // translation slice half-width, cells
   uint8_t cov_theta_steps = 8;      // rotation curve half-width, steps
