@@ -55,6 +55,7 @@ TEST(BlendExplorer, CommandIsWallFollowingPlusFrontierVelocityTowardsTheWaypoint
   Params p;
   p.guidance.speed_limit_mps = 100.0f;  // out of the way: check equations 1 and 5 exactly
   p.guidance.yaw_rate_limit_radps = 100.0f;
+  p.srt.arrival_work_per_cycle = 0;  // the first waypoint in the first step
   const SegmentWorld w = hall();
   LaserScan scan = w.scan(kUrg, 0, 0, 0.2);
   ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
@@ -82,6 +83,7 @@ TEST(BlendExplorer, SpeedLimitCapsTheSum) {
   auto ex = std::make_unique<BlendExplorer>();
   Params p;
   p.guidance.gain_fr = 50.0f;  // a far waypoint would command tens of m/s
+  p.srt.arrival_work_per_cycle = 0;  // the first waypoint in the first step
   const SegmentWorld w = hall();
   const LaserScan scan = w.scan(kUrg, 0, 0, 0);
   ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
@@ -98,6 +100,7 @@ TEST(BlendExplorer, YawRateLimitSlewsTheHeadingCommand) {
   auto ex = std::make_unique<BlendExplorer>();
   Params p;
   p.guidance.yaw_rate_limit_radps = 0.5f;
+  p.srt.arrival_work_per_cycle = 0;  // the first waypoint in the first step
   // Facing north across the 4 m hall: the only frontiers are east, 90 degrees off the nose.
   const SegmentWorld w = hall();
   const float heading = static_cast<float>(M_PI / 2);
@@ -136,6 +139,35 @@ TEST(BlendExplorer, WaypointTimeLimitRestartsExploration) {
   EXPECT_EQ(ex->planner()->restarts(), 1u);
   EXPECT_EQ(ex->planner()->last_restart_reason(), RestartReason::kTimeout);
   EXPECT_EQ(ex->planner()->tree().nodes().size(), 1u);
+}
+
+TEST(BlendExplorer, HoldsOnTheArrivalPointWhileTheArrivalStepIsSliced) {
+  auto ex = std::make_unique<BlendExplorer>();
+  Params p;  // default budget: the arrival step takes several guidance cycles
+  const SegmentWorld w = hall();
+  LaserScan scan = w.scan(kUrg, 0, 0, 0);
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
+  GuidanceSetpoint out;
+  ASSERT_EQ(ex->step(nav_at(0, 0, 0), scan, out), Status::kOk);
+  ASSERT_TRUE(ex->planner()->busy());
+  int cycles = 1;
+  // Drifting off meanwhile: v_fr pulls back to where the step began, on top of the field.
+  while (ex->planner()->busy() && cycles < 100) {
+    scan = w.scan(kUrg, 0.1, 0.05, 0, TimeUs{cycles * 100000});
+    ASSERT_EQ(ex->step(nav_at(0.1f, 0.05f, 0), scan, out), Status::kOk);
+    ++cycles;
+    if (!ex->planner()->busy()) break;
+    EXPECT_TRUE(ex->status().has_target);
+    EXPECT_FLOAT_EQ(ex->status().target.x, 0.0f);
+    EXPECT_FLOAT_EQ(ex->status().target.y, 0.0f);
+    EXPECT_NEAR(ex->status().v_fr.x(), -0.1f * p.guidance.gain_fr, 1e-6);
+    EXPECT_NEAR(ex->status().v_fr.y(), -0.05f * p.guidance.gain_fr, 1e-6);
+    EXPECT_EQ(out.mode, GuidanceSetpoint::Mode::kVelocity);
+  }
+  EXPECT_GE(cycles, 2);
+  EXPECT_FALSE(ex->planner()->busy());
+  EXPECT_EQ(ex->planner()->mode(), PlannerMode::kForward);
+  EXPECT_GT(std::hypot(ex->status().target.x, ex->status().target.y), 2.0f * p.guidance.arrival_distance_m - 1e-4f);
 }
 
 TEST(SrtExplorer, SendsTheWaypointAsAPositionSetpoint) {

@@ -186,5 +186,48 @@ TEST_F(SectorTest, RejectsEmptyScansAndBadParameters) {
   EXPECT_EQ(sectors->count(), 5);
 }
 
+
+TEST_F(SectorTest, SlicedBuildEqualsTheOneCallBuild) {
+  SegmentWorld w;
+  w.add_box(-2.0, -1.5, 3.0, 1.2);
+  w.add(0.8, 1.2, 0.8, 0.7);  // a jamb near the vehicle
+  LaserScan ccw = w.scan(urg, 0.1, 0.0, 0.5);
+  LaserScan cw = ccw;  // the same scan taken clockwise
+  cw.first_angle_rad = ccw.angle_of(ccw.beam_count - 1);
+  cw.angle_step_rad = -ccw.angle_step_rad;
+  for (int i = 0; i < ccw.beam_count; ++i) cw.range_mm[i] = ccw.range_mm[ccw.beam_count - 1 - i];
+  for (const LaserScan* scan : {&ccw, &cw}) {
+    auto whole = std::make_unique<SectorScan>();
+    ASSERT_EQ(whole->build(*scan, params), Status::kOk);
+    for (uint32_t budget : {1u, 7u, 500u}) {
+      SCOPED_TRACE(::testing::Message() << "budget " << budget << (scan == &cw ? " clockwise" : ""));
+      auto sliced = std::make_unique<SectorScan>();
+      for (int pass = 0; pass < 2; ++pass) {  // the second pass reuses the direction tables
+        ASSERT_EQ(sliced->begin(*scan, params), Status::kOk);
+        int calls = 0;
+        while (!sliced->ready() && calls < 100000) {
+          EXPECT_GE(sliced->advance(*scan, budget), 1u);  // every call makes progress
+          ++calls;
+        }
+        ASSERT_TRUE(sliced->ready());
+        EXPECT_GT(calls, 1);
+        ASSERT_EQ(sliced->count(), whole->count());
+        for (uint16_t s = 0; s < whole->count(); ++s) {
+          EXPECT_EQ(sliced->radius_mm(s), whole->radius_mm(s));
+          EXPECT_EQ(sliced->obstacle_free(s), whole->obstacle_free(s));
+          for (uint16_t j = 0; j < SectorScan::kRaysPerSector; ++j)
+            EXPECT_EQ(sliced->clear_mm(s, j), whole->clear_mm(s, j)) << "sector " << s << " ray " << j;
+        }
+        ASSERT_EQ(sliced->frontiers().size(), whole->frontiers().size());
+        for (std::size_t i = 0; i < whole->frontiers().size(); ++i) {
+          EXPECT_EQ(sliced->frontiers()[i].sector, whole->frontiers()[i].sector);
+          EXPECT_EQ(sliced->frontiers()[i].kind, whole->frontiers()[i].kind);
+          EXPECT_EQ(sliced->frontiers()[i].range_m, whole->frontiers()[i].range_m);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace kestrel::exploration

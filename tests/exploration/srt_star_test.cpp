@@ -20,6 +20,13 @@ using test::uniform_scan;
 
 const LaserModel kUrg = LaserModel::urg04lx();
 
+// The whole arrival step in the arriving call (the tests that look at one call's result).
+SrtParams one_shot() {
+  SrtParams p;
+  p.arrival_work_per_cycle = 0;
+  return p;
+}
+
 // Walls at 1 m except an opening of +-half_deg around the nose.
 LaserScan opening_scan(double half_deg) {
   LaserScan s = uniform_scan(kUrg, 1000);
@@ -98,14 +105,17 @@ struct Flight {
 };
 
 // Teleports the vehicle onto each new waypoint, facing the way it moved, until the planner
-// finishes or `max_steps` steps pass.
+// finishes or `max_steps` arrivals pass.
 Flight teleport(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start, int max_steps) {
   Flight fl;
   Pose2 pose = start;
   TimeUs t{};
   for (int k = 0; k < max_steps && !planner.finished(); ++k) {
     bool fresh = false;
-    EXPECT_EQ(planner.update(pose, world.scan(kUrg, pose.x, pose.y, pose.theta, t), t, fresh), Status::kOk);
+    const LaserScan scan = world.scan(kUrg, pose.x, pose.y, pose.theta, t);
+    EXPECT_EQ(planner.update(pose, scan, t, fresh), Status::kOk);
+    // An arrival step in slices: the vehicle waits on the spot until it is done.
+    for (int slice = 0; slice < 1000 && planner.busy(); ++slice) EXPECT_EQ(planner.update(pose, scan, t, fresh), Status::kOk);
     if (fresh) {
       fl.modes.push_back(planner.mode());
       fl.waypoints.push_back(planner.waypoint());
@@ -160,7 +170,7 @@ TEST(SrtStarPlanner, ExploresBothBranchesBacktracksAndFinishesOnTheRoot) {
 
 TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
   auto planner = std::make_unique<SrtStarPlanner>();
-  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  ASSERT_EQ(planner->configure(one_shot(), {}), Status::kOk);
   bool fresh = false;
   // Root: a 1.15 m wide opening ahead.
   ASSERT_EQ(planner->update({0, 0, 0}, opening_scan(35), TimeUs{}, fresh), Status::kOk);
@@ -189,7 +199,7 @@ TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
 
 TEST(SrtStarPlanner, EnclosedRoomFinishesAtOnce) {
   auto planner = std::make_unique<SrtStarPlanner>();
-  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
+  ASSERT_EQ(planner->configure(one_shot(), {}), Status::kOk);
   SegmentWorld room;
   room.add_box(-2, -2, 2, 2);
   bool fresh = false;
@@ -203,7 +213,7 @@ TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
   auto planner = std::make_unique<SrtStarPlanner>();
   GuidanceParams g;
   g.waypoint_time_limit_s = 10.0f;
-  ASSERT_EQ(planner->configure({}, g), Status::kOk);
+  ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
   const SegmentWorld world = l_corridors();
   (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);  // grow a little
   const std::size_t grown = planner->tree().nodes().size();
@@ -269,8 +279,7 @@ TEST(SrtStarPlanner, SameSeedSameWaypointsOtherSeedOtherWaypoints) {
 
 TEST(SrtStarPlanner, WaypointsStayInsideTheSectorOfAFrontier) {
   auto planner = std::make_unique<SrtStarPlanner>();
-  ASSERT_EQ(planner->configure({}, {}), Status::kOk);
-  SrtParams p;
+  SrtParams p = one_shot();
   for (uint32_t seed = 1; seed < 40; ++seed) {
     p.seed = seed;
     ASSERT_EQ(planner->configure(p, {}), Status::kOk);
@@ -315,6 +324,275 @@ TEST(SrtStarPlanner, RejectsBadInputWithoutChangingState) {
   EXPECT_EQ(planner->update({0, 0, 0}, empty, TimeUs{}, fresh), Status::kInvalidArgument);
   EXPECT_EQ(planner->mode(), PlannerMode::kIdle);
   EXPECT_TRUE(planner->tree().nodes().empty());
+}
+
+
+// ---- the arrival step in slices ------------------------------------------------------------
+
+struct Trace {
+  std::vector<PlannerMode> modes;
+  std::vector<Point2> waypoints;
+  std::vector<uint16_t> current, target;
+  int calls = 0;
+  int busy_calls = 0;
+  uint32_t most_work = 0;
+};
+
+// Like teleport(), but while the planner is busy every further call gets a pose 0.25 m off the
+// arrival and the scan taken there, with time running on 0.1 s per call: the planner must not
+// use them. Ends after `arrivals` new waypoints or when the planner finishes.
+Trace fly(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start, int arrivals) {
+  Trace tr;
+  Pose2 pose = start;
+  TimeUs t{};
+  for (int k = 0; k < arrivals && !planner.finished(); ++k) {
+    bool fresh = false;
+    EXPECT_EQ(planner.update(pose, world.scan(kUrg, pose.x, pose.y, pose.theta, t), t, fresh), Status::kOk);
+    ++tr.calls;
+    tr.most_work = std::max(tr.most_work, planner.last_work());
+    const Pose2 off{pose.x + 0.25f, pose.y - 0.1f, pose.theta + 0.3f};
+    const LaserScan elsewhere = world.scan(kUrg, off.x, off.y, off.theta, t);
+    const Point2 held = planner.waypoint();
+    while (planner.busy()) {
+      EXPECT_TRUE(planner.has_waypoint());
+      EXPECT_EQ(planner.waypoint().x, held.x);  // the hold point while the step is worked on
+      EXPECT_EQ(planner.waypoint().y, held.y);
+      EXPECT_FALSE(fresh);
+      t += Duration::from_ms(100);
+      EXPECT_EQ(planner.update(off, elsewhere, t, fresh), Status::kOk);
+      ++tr.calls;
+      ++tr.busy_calls;
+      tr.most_work = std::max(tr.most_work, planner.last_work());
+    }
+    EXPECT_TRUE(fresh);
+    tr.modes.push_back(planner.mode());
+    tr.waypoints.push_back(planner.waypoint());
+    tr.current.push_back(planner.current_node());
+    tr.target.push_back(planner.target_node());
+    const Point2 w = planner.waypoint();
+    if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+    pose.x = w.x;
+    pose.y = w.y;
+    t += Duration::from_s(1.0);
+  }
+  return tr;
+}
+
+void expect_same_tree(const SrtStarTree& a, const SrtStarTree& b) {
+  ASSERT_EQ(a.nodes().size(), b.nodes().size());
+  for (std::size_t i = 0; i < a.nodes().size(); ++i) {
+    const SrtNode &x = a.nodes()[i], &y = b.nodes()[i];
+    EXPECT_EQ(x.position.x, y.position.x);
+    EXPECT_EQ(x.position.y, y.position.y);
+    EXPECT_EQ(x.parent, y.parent);
+    EXPECT_EQ(x.sector_start_rad, y.sector_start_rad);
+    EXPECT_EQ(x.radius_mm, y.radius_mm) << "node " << i;
+    EXPECT_EQ(x.clear_mm, y.clear_mm) << "node " << i;
+  }
+  ASSERT_EQ(a.frontiers().size(), b.frontiers().size());
+  for (std::size_t i = 0; i < a.frontiers().size(); ++i) {
+    const Frontier &x = a.frontiers()[i], &y = b.frontiers()[i];
+    EXPECT_EQ(x.position.x, y.position.x);
+    EXPECT_EQ(x.position.y, y.position.y);
+    EXPECT_EQ(x.node, y.node);
+    EXPECT_EQ(x.sector, y.sector);
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.attempts, y.attempts);
+  }
+}
+
+// Two rooms joined by a 1 m door, with a corridor leaving the second: forward steps,
+// backtracks with and without closing in on the node, frontiers dropped and removed.
+SegmentWorld two_rooms() {
+  SegmentWorld w;
+  w.add(-2, -2, 2, -2);
+  w.add(-2, -2, -2, 2);
+  w.add(-2, 2, 2, 2);
+  w.add(2, -2, 2, -0.5);  // the door: y in [-0.5, 0.5]
+  w.add(2, 0.5, 2, 2);
+  w.add(2, -2, 6, -2);
+  w.add(2, 2, 6, 2);
+  w.add(6, -2, 6, 1.0);  // the corridor north-east: x in [6, 7]
+  w.add(6, 2, 6, 1.8);
+  w.add(6, 1.0, 9, 1.0);
+  w.add(6, 1.8, 9, 1.8);
+  return w;
+}
+
+TEST(SrtStarPlannerSliced, GivesTheOneShotResultWhateverTheBudget) {
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    for (const SegmentWorld& world : {l_corridors(), two_rooms()}) {
+      SrtParams whole = one_shot();
+      whole.seed = seed;
+      auto reference = std::make_unique<SrtStarPlanner>();
+      ASSERT_EQ(reference->configure(whole, {}), Status::kOk);
+      const Trace a = fly(*reference, world, {0, 0, static_cast<float>(M_PI / 4)}, 60);
+      EXPECT_EQ(a.busy_calls, 0);
+      for (uint32_t budget : {97u, 2000u, SrtParams{}.arrival_work_per_cycle}) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed << " budget " << budget);
+        SrtParams sliced = whole;
+        sliced.arrival_work_per_cycle = budget;
+        auto planner = std::make_unique<SrtStarPlanner>();
+        ASSERT_EQ(planner->configure(sliced, {}), Status::kOk);
+        const Trace b = fly(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 60);
+        EXPECT_GT(b.busy_calls, 0);
+        ASSERT_EQ(a.waypoints.size(), b.waypoints.size());
+        for (std::size_t i = 0; i < a.waypoints.size(); ++i) {
+          EXPECT_EQ(a.modes[i], b.modes[i]) << "waypoint " << i;
+          EXPECT_EQ(a.waypoints[i].x, b.waypoints[i].x) << "waypoint " << i;
+          EXPECT_EQ(a.waypoints[i].y, b.waypoints[i].y) << "waypoint " << i;
+          EXPECT_EQ(a.current[i], b.current[i]);
+          EXPECT_EQ(a.target[i], b.target[i]);
+        }
+        EXPECT_EQ(reference->finished(), planner->finished());
+        EXPECT_EQ(reference->waypoints_issued(), planner->waypoints_issued());
+        expect_same_tree(reference->tree(), planner->tree());
+      }
+    }
+  }
+}
+
+TEST(SrtStarPlannerSliced, EachCallStaysWithinItsBudgetAndTheTimeLimitWaits) {
+  GuidanceParams g;
+  g.waypoint_time_limit_s = 10.0f;
+  auto planner = std::make_unique<SrtStarPlanner>();
+  ASSERT_EQ(planner->configure({}, g), Status::kOk);
+  const uint32_t budget = SrtParams{}.arrival_work_per_cycle;
+  // A call may finish the item it is on: at most one beam's erosion over every ray.
+  const uint32_t overrun =
+      work::kErodeBeam + (work::kErodeRay + work::kErodeSide + work::kErodeRoot) * kMaxSectors * SectorScan::kRaysPerSector;
+  SegmentWorld room;
+  room.add_box(-1.5, -1.2, 4.0, 1.2);
+  room.add(1.0, 1.2, 1.0, 0.9);  // a jamb near the vehicle: returns within the clearance's reach
+  const LaserScan scan = room.scan(kUrg, 0.2, 0.0, 0.4);
+  bool fresh = false;
+  ASSERT_EQ(planner->update({0.2f, 0.0f, 0.4f}, scan, TimeUs{}, fresh), Status::kOk);
+  // The vehicle holds where exploration started until the first waypoint is chosen.
+  ASSERT_TRUE(planner->busy());
+  EXPECT_FALSE(fresh);
+  EXPECT_EQ(planner->mode(), PlannerMode::kIdle);
+  EXPECT_TRUE(planner->has_waypoint());
+  EXPECT_FLOAT_EQ(planner->waypoint().x, 0.2f);
+  EXPECT_FLOAT_EQ(planner->waypoint().y, 0.0f);
+  EXPECT_GT(planner->last_work(), budget / 2);
+  EXPECT_LE(planner->last_work(), budget + overrun);
+  int calls = 1;
+  TimeUs t{};
+  while (planner->busy() && calls < 1000) {
+    t += Duration::from_s(20.0);  // far beyond the time limit: it does not run while busy
+    ASSERT_EQ(planner->update({0.2f, 0.0f, 0.4f}, scan, t, fresh), Status::kOk);
+    EXPECT_LE(planner->last_work(), budget + overrun);
+    ++calls;
+  }
+  EXPECT_GE(calls, 2);
+  EXPECT_FALSE(planner->busy());
+  EXPECT_TRUE(fresh);
+  EXPECT_EQ(planner->restarts(), 0u);
+  EXPECT_EQ(planner->mode(), PlannerMode::kForward);
+  EXPECT_EQ(planner->waypoint_time(), t);  // the limit counts from the call that finished it
+  // Now it runs: 10 s later, not at the waypoint, the tree restarts.
+  ASSERT_EQ(planner->update({0.2f, 0.0f, 0.4f}, scan, t + Duration::from_s(10.1), fresh), Status::kOk);
+  EXPECT_EQ(planner->restarts(), 1u);
+  EXPECT_EQ(planner->last_restart_reason(), RestartReason::kTimeout);
+  // The direction tables are kept: a second arrival of the same laser takes fewer calls.
+  int again = 1;
+  while (planner->busy() && again < 1000) {
+    ASSERT_EQ(planner->update({0.2f, 0.0f, 0.4f}, scan, t + Duration::from_s(11), fresh), Status::kOk);
+    ++again;
+  }
+  EXPECT_LT(again, calls);
+}
+
+
+// ---- operator keep-out ---------------------------------------------------------------------
+
+// A corridor along x whose north wall has a 3 m glass window at x 2..5 (the laser sees through
+// it into a room behind), and a doorway further east at x 9..10.2.
+SegmentWorld corridor_with_window(bool glass_visible) {
+  SegmentWorld w;
+  w.add(-1, 6, 14, 6);  // south wall
+  w.add(-1, 6, -1, 9);
+  w.add(14, 6, 14, 9);
+  w.add(-1, 9, 2, 9);  // north wall: window x 2..5, door x 9..10.2
+  if (glass_visible) w.add(2, 9, 5, 9);
+  w.add(5, 9, 9, 9);
+  w.add(10.2, 9, 14, 9);
+  w.add(-1, 13, 14, 13);  // the room behind
+  w.add(-1, 9, -1, 13);
+  w.add(14, 9, 14, 13);
+  return w;
+}
+
+bool segment_crosses_box(Point2 a, Point2 b, const KeepOut& k, float grow) {
+  for (int i = 0; i <= 200; ++i) {  // dense sampling: an oracle independent of the slab test
+    const float t = static_cast<float>(i) / 200.0f;
+    const float x = a.x + t * (b.x - a.x), y = a.y + t * (b.y - a.y);
+    if (x > k.x_min - grow && x < k.x_max + grow && y > k.y_min - grow && y < k.y_max + grow) return true;
+  }
+  return false;
+}
+
+TEST(SrtStarPlannerKeepOut, NoWaypointIsDrawnIntoOrThroughTheWindow) {
+  const SegmentWorld laser_world = corridor_with_window(false);  // glass: the beams pass
+  const KeepOut window{2.0f, 8.9f, 5.0f, 9.1f};
+  int crossings_without = 0;
+  for (uint32_t seed = 1; seed <= 6; ++seed) {
+    for (bool keep_out : {false, true}) {
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " keep-out " << keep_out);
+      SrtParams p;
+      p.seed = seed;
+      if (keep_out) {
+        p.keep_out[0] = window;
+        p.keep_out_count = 1;
+      }
+      auto planner = std::make_unique<SrtStarPlanner>();
+      ASSERT_EQ(planner->configure(p, {}), Status::kOk);
+      Pose2 pose{2.0f, 7.5f, 0.0f};
+      TimeUs t{};
+      for (int k = 0; k < 40 && !planner->finished(); ++k) {
+        const LaserScan scan = laser_world.scan(kUrg, pose.x, pose.y, pose.theta, t);
+        bool fresh = false;
+        do {
+          ASSERT_EQ(planner->update(pose, scan, t, fresh), Status::kOk);
+        } while (planner->busy());
+        const Point2 w = planner->waypoint();
+        const bool crosses = segment_crosses_box({pose.x, pose.y}, w, window, 0.0f);
+        if (keep_out && planner->mode() == PlannerMode::kForward) {
+          // The path keeps the clearance from the box; so does the waypoint.
+          EXPECT_FALSE(segment_crosses_box({pose.x, pose.y}, w, window, p.clearance_m - 0.01f))
+              << "waypoint " << w.x << ", " << w.y;
+        }
+        crossings_without += !keep_out && crosses;
+        if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+        pose.x = w.x;
+        pose.y = w.y;
+        t += Duration::from_s(1.0);
+      }
+      if (keep_out) {
+        // No frontier the tree keeps was seen through the window.
+        for (const Frontier& f : planner->tree().frontiers())
+          EXPECT_FALSE(segment_crosses_box(planner->tree().nodes()[f.node].position, f.position, window,
+                                           p.clearance_m - 0.01f));
+      }
+    }
+  }
+  // Without the keep-out the planner does fly through the window: the test can fail.
+  EXPECT_GT(crossings_without, 0);
+}
+
+TEST(SrtStarPlannerKeepOut, BadBoxesAreRefused) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  SrtParams p;
+  p.keep_out_count = 1;
+  p.keep_out[0] = {1.0f, 0.0f, 0.0f, 1.0f};  // x_min > x_max
+  EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument);
+  p.keep_out[0] = {0.0f, NAN, 1.0f, 1.0f};
+  EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument);
+  p.keep_out[0] = {0.0f, 0.0f, 1.0f, 1.0f};
+  p.keep_out_count = kMaxKeepOuts + 1;
+  EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument);
+  p.keep_out_count = 1;
+  EXPECT_EQ(planner->configure(p, {}), Status::kOk);
 }
 
 }  // namespace

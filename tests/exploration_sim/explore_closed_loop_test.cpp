@@ -1,11 +1,14 @@
 // Issue 6: the blend explorer (paper 002, Algorithm 1) in closed loop through the whole
 // autonomy stack (scan matcher, EKF, mission, explorer, controller) in the simulated
-// gt-building with the URG-04LX at 10 Hz, paper 002's configuration, seed 1.
-//  - FirstMinute (host; disabled under qemu, see below): the vehicle takes off, leaves the
-//    start hallway, sees a fifth of the building, touches nothing, allocates nothing.
+// gt-building with the URG-04LX at 10 Hz, paper 002's configuration.
+//  - FirstMinute (host; disabled under qemu, see below), seeds 1-5: each flight takes off,
+//    leaves the start hallway, touches nothing, allocates nothing; together they see a fifth of
+//    the building on average (one seed alone is a chaotic sample: any change of timing, such
+//    as the arrival step's slices, moves a single flight's first-minute coverage between 13 %
+//    and 34 %; the mean over seeds 1-10 was 25.6 % sliced and 25.7 % in one cycle).
 //  - ExploresToNinetyPercent (host only, 600 s): at least 90 % of the reachable area seen, no
 //    collision, no allocation once armed. Disabled until the closed loop meets it: on this
-//    seed the estimate drifts along the corridor (the URG-04LX sees only its side walls) and
+//    seed 1 the estimate drifts along the corridor (the URG-04LX sees only its side walls) and
 //    the vehicle hits a door jamb at t = 168 s (see the issue 6 report).
 #include <gtest/gtest.h>
 
@@ -35,13 +38,13 @@ struct Flight {
   double allocs = -1;
 };
 
-Flight explore_gt_building(double seconds) {
+Flight explore_gt_building(double seconds, uint32_t seed = 1) {
   Flight f;
   const auto w = load_builtin_world("gt-building");
   EXPECT_TRUE(w.ok);
   SimConfig cfg;
   cfg.laser = LaserParams::urg04lx();
-  cfg.seed = 1;
+  cfg.seed = seed;
   Simulation sim(w.world, cfg);
   FlightRecorder rec(sim.world(), sim.free_space(), Duration::from_s(seconds));
   sim.set_observer(&rec);
@@ -73,13 +76,18 @@ TEST(ExploreClosedLoop, DISABLED_FirstMinuteLeavesTheHallwayWithoutCollision) {
 #else
 TEST(ExploreClosedLoop, FirstMinuteLeavesTheHallwayWithoutCollision) {
 #endif
-  const Flight f = explore_gt_building(60.0);
-  ASSERT_EQ(f.run.status, Status::kOk) << f.run.message;
-  EXPECT_FALSE(f.run.collided) << f.run.message;
-  EXPECT_EQ(f.contacts, 0u);
-  EXPECT_EQ(f.allocs, 0.0);
-  EXPECT_GE(f.coverage, 0.20);
-  EXPECT_GE(f.rooms, 1);
+  double coverage = 0;
+  constexpr uint32_t kSeeds = 5;
+  for (uint32_t seed = 1; seed <= kSeeds; ++seed) {
+    const Flight f = explore_gt_building(60.0, seed);
+    ASSERT_EQ(f.run.status, Status::kOk) << f.run.message;
+    EXPECT_FALSE(f.run.collided) << "seed " << seed << ": " << f.run.message;
+    EXPECT_EQ(f.contacts, 0u) << "seed " << seed;
+    EXPECT_EQ(f.allocs, 0.0) << "seed " << seed;
+    EXPECT_GE(f.rooms, 1) << "seed " << seed;
+    coverage += f.coverage / kSeeds;
+  }
+  EXPECT_GE(coverage, 0.20);
 }
 
 #if !KESTREL_EXPLORE_SIM_SHORT

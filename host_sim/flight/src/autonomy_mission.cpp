@@ -65,6 +65,31 @@ bool parse_double(const std::string& s, double& out) {
 
 }  // namespace
 
+std::string parse_keep_outs(const std::string& text, exploration::SrtParams& srt) {
+  srt.keep_out_count = 0;
+  std::stringstream boxes(text);
+  // Messages are built with append: GCC 12's -Wrestrict misreads operator+ chains here (ARM).
+  std::string why;
+  for (std::string box; std::getline(boxes, box, ';');) {
+    std::stringstream fields(box);
+    std::vector<double> v;
+    for (std::string f; std::getline(fields, f, ',');) {
+      double d = 0;
+      if (!parse_double(f, d)) return why.append("'").append(f).append("' is not a number");
+      v.push_back(d);
+    }
+    if (v.size() != 4) return why.append("expected x_min,y_min,x_max,y_max (m), got '").append(box).append("'");
+    if (v[0] > v[2] || v[1] > v[3])
+      return why.append("'").append(box).append("': the minimum corner must come first");
+    if (srt.keep_out_count == exploration::kMaxKeepOuts)
+      return why.append("more than ").append(std::to_string(exploration::kMaxKeepOuts)).append(" boxes");
+    srt.keep_out[srt.keep_out_count++] = {static_cast<float>(v[0]), static_cast<float>(v[1]),
+                                          static_cast<float>(v[2]), static_cast<float>(v[3])};
+  }
+  if (srt.keep_out_count == 0) return "no box";
+  return "";
+}
+
 std::string load_waypoints(const std::string& path, autonomy::StackConfig& stack) {
   std::ifstream in(path);
   if (!in) return path + ": cannot be read";
@@ -119,6 +144,8 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "explore_s" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d < 0) return "explore_s: '" + value + "' is not a non-negative number";
       out.stack.mission.explore_time_limit_s = static_cast<float>(d);
+    } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
+      if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
     } else if (key == "delay_s") {
       if (!parse_double(value, d) || d < 0 || d > 2) return "delay_s: '" + value + "' is not a delay in [0, 2] s";
       out.delay_s = d;
@@ -258,6 +285,19 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
   for (const EstimateSample& s : samples_)
     if (tum.write(s.t_s, s.est_pos.x(), s.est_pos.y(), s.est_pos.z(), s.est_yaw) != Status::kOk) return Status::kIoError;
   if (tum.close() != Status::kOk) return Status::kIoError;
+  if (options_.kind == mission::MissionKind::kExplore && recorder() != nullptr) {
+    // The numbers behind coverage_vs_time.png, so a sweep can average runs on one plot
+    // (kestrel-coverage-plot): one `t_s,coverage` row per sample, coverage as a fraction.
+    std::ofstream csv(dir + "/coverage_vs_time.csv");
+    if (!csv) return Status::kIoError;
+    csv << "t_s,coverage\n";
+    char row[64];
+    for (const sim::FlightRecorder::CoverageSample& c : recorder()->coverage_series()) {
+      std::snprintf(row, sizeof row, "%.3f,%.6f\n", c.t_s, c.coverage);
+      csv << row;
+    }
+    if (!csv.flush()) return Status::kIoError;
+  }
 #if defined(KESTREL_HAS_PNG)
   // Paper 000 Figure 6: estimated against true position and velocity.
   output::Series ex{"estimate x", output::colors::kRed, {}, {}}, tx{"truth x", output::colors::kBlue, {}, {}};

@@ -10,6 +10,11 @@ t_all_rooms_s, mean coverage and coverage at fixed times from coverage_vs_time).
 Standard library only. Runs already present in OUT (metrics.json exists) are not re-run, so
 an interrupted sweep can be resumed and a table re-printed with --seeds and no runs.
 
+With --plot PNG it also draws coverage against time, one panel per world and laser and one
+curve per explorer, each the mean over the seeds of the runs' coverage_vs_time.csv (a run that
+ended early, by a collision or a finished mission, keeps its last coverage), by calling
+kestrel-coverage-plot (--plot-tool, default: beside --sim).
+
 Example:
   host_sim/flight/tools/explore_sweep.py --sim build/host/host_sim/tools/kestrel-sim \\
       --out /tmp/sweep --worlds gt-building iarc-arena --lasers urg04lx utm30lx \\
@@ -46,6 +51,8 @@ def run_one(args, world, laser, explorer, seed):
         os.makedirs(d, exist_ok=True)
         cmd = ["nice", "-n", "10", args.sim, "--world", world, "--laser", laser, "--mission", "explore",
                "--explorer", explorer, "--duration", str(args.duration), "--seed", str(seed), "--out", d]
+        for kv in args.mission_arg or []:
+            cmd += ["--mission-arg", kv]
         with open(os.path.join(d, "stderr.txt"), "w") as err:
             subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=err, timeout=args.timeout, check=False)
     try:
@@ -80,6 +87,10 @@ def main():
     ap.add_argument("--duration", type=int, default=600)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=int, default=3600, help="wall-clock seconds per run")
+    ap.add_argument("--mission-arg", action="append", metavar="KEY=VALUE",
+                    help="passed to every run, e.g. keepout=2,8.9,5,9.1 (repeatable)")
+    ap.add_argument("--plot", help="coverage-versus-time picture (PNG) of the sweep")
+    ap.add_argument("--plot-tool", help="kestrel-coverage-plot (default: beside --sim)")
     args = ap.parse_args()
     seeds = parse_seeds(args.seeds)
     combos = [(w, l, e, s) for w in args.worlds for l in args.lasers for e in args.explorers for s in seeds]
@@ -119,7 +130,39 @@ def main():
         print(f"| {w} | {l} | {e} | {n} | {len(all_rooms)}/{n} | {free}/{n} | {fin}/{n} | "
               f"{mmss(statistics.median(t_all)) if t_all else '-'} | {fmt(cov, 1, True)} | "
               f"{fmt(statistics.median(t90)) if t90 else '-'} |")
+    if args.plot:
+        return plot(args, results)
     return 0
+
+
+def plot_command(args, results):
+    """kestrel-coverage-plot's arguments: a panel per (world, laser), a curve per explorer."""
+    tool = args.plot_tool or os.path.join(os.path.dirname(args.sim), "kestrel-coverage-plot")
+    cmd = [tool, "--out", args.plot, "--end", str(args.duration)]
+    panels = {}
+    for (w, l, e, s), m in results:
+        csv = os.path.join(run_dir(args.out, w, l, e, s), "coverage_vs_time.csv")
+        if m is None or not os.path.exists(csv):
+            continue
+        panels.setdefault((w, l), {}).setdefault(e, []).append((csv, m))
+    for (w, l), explorers in panels.items():
+        cmd += ["--panel", f"{w}, {l}, seeds {args.seeds}"]
+        for e, runs in explorers.items():
+            hit = sum(1 for _, m in runs if m.get("collisions", 0) > 0)
+            label = f"{e} ({hit}/{len(runs)} collided)"
+            cmd += ["--series", label + "=" + ",".join(csv for csv, _ in runs)]
+    return cmd
+
+
+def plot(args, results):
+    cmd = plot_command(args, results)
+    if "--series" not in cmd:
+        print("no coverage_vs_time.csv in the runs: nothing to plot", file=sys.stderr)
+        return 1
+    done = subprocess.run(cmd, check=False)
+    if done.returncode == 0:
+        print(f"\ncoverage against time: {args.plot}")
+    return done.returncode
 
 
 if __name__ == "__main__":

@@ -63,16 +63,69 @@ void guidance_step(benchmark::State& state, uint16_t beams, double fov_deg) {
   state.SetItemsProcessed(state.iterations() * beams);
 }
 
+// The whole arrival step in one call (srt.arrival_work_per_cycle = 0), as before it was sliced.
+// The direction tables are built once per laser geometry, outside the timed loop.
 void srt_arrival(benchmark::State& state, uint16_t beams, double fov_deg) {
   auto planner = std::make_unique<SrtStarPlanner>();
-  (void)planner->configure(SrtParams{}, GuidanceParams{});
+  SrtParams whole;
+  whole.arrival_work_per_cycle = 0;
+  (void)planner->configure(whole, GuidanceParams{});
   LaserScan scan = room_scan(beams, fov_deg, 2.0, 1.5, 0.3, 6.0, 4.0);
   bool fresh = false;
+  (void)planner->update({2.0f, 1.5f, 0.3f}, scan, TimeUs{}, fresh);
   for (auto _ : state) {
     state.PauseTiming();
     planner->reset();
     state.ResumeTiming();
     benchmark::DoNotOptimize(planner->update({2.0f, 1.5f, 0.3f}, scan, TimeUs{}, fresh));
+  }
+}
+
+// The first state.range(0) guidance cycles of an arrival step in slices (default budget):
+// the instructions of cycle n are those of n cycles minus those of n - 1, so each cycle's
+// share is measured exactly under qemu-arm (`kestrel-budget insns`), not averaged.
+void srt_arrival_cycles(benchmark::State& state, uint16_t beams, double fov_deg, bool corridor = false) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  (void)planner->configure(SrtParams{}, GuidanceParams{});
+  LaserScan scan = corridor ? room_scan(beams, fov_deg, 2.0, 0.7, 0.3, 20.0, 1.4)
+                            : room_scan(beams, fov_deg, 2.0, 1.5, 0.3, 6.0, 4.0);
+  bool fresh = false;
+  const Pose2 pose{2.0f, corridor ? 0.7f : 1.5f, 0.3f};
+  do {  // tables built, as in flight after the first arrival
+    (void)planner->update(pose, scan, TimeUs{}, fresh);
+  } while (planner->busy());
+  int64_t calls = 0;
+  bool done = false;
+  for (auto _ : state) {
+    planner->reset();
+    calls = 0;
+    done = false;
+    while (calls < state.range(0) && !done) {
+      benchmark::DoNotOptimize(planner->update(pose, scan, TimeUs{}, fresh));
+      ++calls;
+      done = !planner->busy();
+    }
+  }
+  state.counters["cycles"] = static_cast<double>(calls);
+  state.counters["arrival_done"] = done ? 1.0 : 0.0;
+}
+
+// The sectors and their erosion alone (SectorScan::build), direction tables kept; and with the
+// tables rebuilt every time (two scans whose beam steps differ in the last bit, alternately):
+// these calibrate the work units of work_units.hpp on the Verdex.
+// The corridor case (1.4 m wide, walls 0.7 m away) makes every return block many rays.
+void sector_scan(benchmark::State& state, uint16_t beams, double fov_deg, bool rebuild_tables, bool corridor = false) {
+  auto sectors = std::make_unique<SectorScan>();
+  LaserScan a = corridor ? room_scan(beams, fov_deg, 2.0, 0.7, 0.3, 20.0, 1.4)
+                         : room_scan(beams, fov_deg, 2.0, 1.5, 0.3, 6.0, 4.0);
+  LaserScan b = a;
+  b.angle_step_rad = std::nextafter(a.angle_step_rad, 1.0f);
+  const SrtParams params;
+  (void)sectors->build(a, params);
+  bool flip = false;
+  for (auto _ : state) {
+    flip = rebuild_tables && !flip;
+    benchmark::DoNotOptimize(sectors->build(flip ? b : a, params));
   }
 }
 
@@ -88,9 +141,33 @@ void BM_SrtArrivalUrg(benchmark::State& s) {
 void BM_SrtArrivalUtm(benchmark::State& s) {
   srt_arrival(s, 1081, 270.0);
 }
+void BM_SrtArrivalCyclesUrg(benchmark::State& s) {
+  srt_arrival_cycles(s, 682, 240.0);
+}
+void BM_SrtArrivalCyclesCorridorUrg(benchmark::State& s) {
+  srt_arrival_cycles(s, 682, 240.0, true);
+}
+void BM_SrtArrivalCyclesUtm(benchmark::State& s) {
+  srt_arrival_cycles(s, 1081, 270.0);
+}
+void BM_SectorScanUrg(benchmark::State& s) {
+  sector_scan(s, 682, 240.0, false);
+}
+void BM_SectorScanCorridorUrg(benchmark::State& s) {
+  sector_scan(s, 682, 240.0, false, true);
+}
+void BM_SectorScanTablesUrg(benchmark::State& s) {
+  sector_scan(s, 682, 240.0, true);
+}
 BENCHMARK(BM_GuidanceStepUrg)->Name("exploration/guidance_step/urg04lx_682");
 BENCHMARK(BM_GuidanceStepUtm)->Name("exploration/guidance_step/utm30lx_1081");
 BENCHMARK(BM_SrtArrivalUrg)->Name("exploration/srt_arrival/urg04lx_682");
 BENCHMARK(BM_SrtArrivalUtm)->Name("exploration/srt_arrival/utm30lx_1081");
+BENCHMARK(BM_SectorScanUrg)->Name("exploration/sector_scan/urg04lx_682");
+BENCHMARK(BM_SectorScanCorridorUrg)->Name("exploration/sector_scan/urg04lx_682_corridor");
+BENCHMARK(BM_SectorScanTablesUrg)->Name("exploration/sector_scan_new_tables/urg04lx_682");
+BENCHMARK(BM_SrtArrivalCyclesUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682")->DenseRange(1, 8);
+BENCHMARK(BM_SrtArrivalCyclesCorridorUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682_corridor")->DenseRange(1, 16);
+BENCHMARK(BM_SrtArrivalCyclesUtm)->Name("exploration/srt_arrival_cycles/utm30lx_1081")->DenseRange(1, 8);
 
 }  // namespace

@@ -23,11 +23,17 @@ Status Params::validate() const {
                       positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
                       srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
                       non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1;
+  bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
+  for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
+    const KeepOut& k = srt.keep_out[i];
+    keep_out_ok = std::isfinite(k.x_min) && std::isfinite(k.y_min) && std::isfinite(k.x_max) &&
+                  std::isfinite(k.y_max) && k.x_min <= k.x_max && k.y_min <= k.y_max;
+  }
   const bool guidance_ok = positive(guidance.arrival_distance_m) && non_negative(guidance.gain_fr) &&
                            positive(guidance.speed_limit_mps) && positive(guidance.yaw_rate_limit_radps) &&
                            positive(guidance.waypoint_time_limit_s) && std::isfinite(guidance.altitude_m) &&
                            non_negative(guidance.cruise_speed_mps) && non_negative(guidance.wall_hold_gain);
-  return wall_ok && srt_ok && guidance_ok ? Status::kOk : Status::kInvalidArgument;
+  return wall_ok && srt_ok && keep_out_ok && guidance_ok ? Status::kOk : Status::kInvalidArgument;
 }
 
 Status BeamGeometry::validate() const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace kestrel::exploration {
 
@@ -43,16 +44,21 @@ void SrtStarPlanner::reset() {
   waypoints_issued_ = 0;
   restarts_ = 0;
   last_restart_ = RestartReason::kNone;
+  step_ = Step::kNone;
+  last_work_ = 0;
 }
 
 Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs now, bool& new_waypoint) {
   new_waypoint = false;
+  last_work_ = 0;
   if (!pose.finite()) return Status::kInvalidArgument;
   if (scan.beam_count == 0) return Status::kInvalidArgument;
   const uint32_t issued = waypoints_issued_;
 
-  if (mode_ == PlannerMode::kIdle) {
-    if (Status st = grow(pose, scan, now); st != Status::kOk) return st;
+  if (step_ != Step::kNone) {
+    // An arrival step is under way: this call only continues it.
+  } else if (mode_ == PlannerMode::kIdle) {
+    if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
   } else {
     const float dx = waypoint_.x - pose.x, dy = waypoint_.y - pose.y;
     const float radius = aligning_ ? 0.5f * guidance_.arrival_distance_m : guidance_.arrival_distance_m;
@@ -64,33 +70,21 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
       aligning_ = false;
       current_ = target_node_;
       target_node_ = kNoNode;
-      choose_next(pose, scan, now);
+      start_choose(pose, scan);
     } else if (arrived) {
-      if (Status st = grow(pose, scan, now); st != Status::kOk) return st;
+      if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
     } else if (late) {
-      restart(pose, scan, now, RestartReason::kTimeout);
+      restart_tree(RestartReason::kTimeout);
+      // The scan was accepted as the arrival's a moment ago, so it divides into sectors.
+      if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
     }
   }
+  if (step_ != Step::kNone) work_on_arrival(now);
   new_waypoint = waypoints_issued_ != issued;
   return Status::kOk;
 }
 
-Status SrtStarPlanner::grow(const Pose2& pose, const LaserScan& scan, TimeUs now) {
-  if (sectors_.build(scan, srt_) != Status::kOk) return Status::kInvalidArgument;
-  uint16_t id = kNoNode;
-  const Status st = tree_.add_node(pose, sectors_, mode_ == PlannerMode::kIdle ? kNoNode : current_, id);
-  if (st == Status::kCapacityExceeded) {
-    restart(pose, scan, now, RestartReason::kTreeFull);
-    return Status::kOk;
-  }
-  if (st != Status::kOk) return st;
-  current_ = id;
-  target_node_ = kNoNode;
-  choose_next(pose, scan, now);
-  return Status::kOk;
-}
-
-void SrtStarPlanner::restart(const Pose2& pose, const LaserScan& scan, TimeUs now, RestartReason why) {
+void SrtStarPlanner::restart_tree(RestartReason why) {
   tree_.clear();
   aligning_ = false;
   mode_ = PlannerMode::kIdle;
@@ -98,33 +92,84 @@ void SrtStarPlanner::restart(const Pose2& pose, const LaserScan& scan, TimeUs no
   target_node_ = kNoNode;
   ++restarts_;
   last_restart_ = why;
-  // The sectors were built from this scan a moment ago or are rebuilt now: either way the
-  // new root is the current pose, and an empty tree always has room for it.
-  (void)grow(pose, scan, now);
 }
 
-bool SrtStarPlanner::path_clear(const Pose2& pose, const LaserScan& scan, Point2 p) const {
-  const float c = std::cos(pose.theta), s = std::sin(pose.theta);
-  const float wx = p.x - pose.x, wy = p.y - pose.y;
-  const float bx = c * wx + s * wy, by = -s * wx + c * wy;  // the waypoint in the scan's frame
-  const float len2 = bx * bx + by * by;
-  const float rho = srt_.clearance_m;
-  const float reach = std::sqrt(len2) + rho;
-  for (std::size_t i = 0; i < scan.beam_count; ++i) {
-    const uint16_t r_mm = scan.range_mm[i];
-    if (r_mm < kMinValidRangeMm) continue;
-    const float r = static_cast<float>(r_mm) * 1e-3f;
-    if (r >= reach) continue;  // too far to come within rho of the segment
-    const float a = scan.angle_of(i);
-    const float qx = r * std::cos(a), qy = r * std::sin(a);
-    const float u = len2 > 0.0f ? std::clamp((qx * bx + qy * by) / len2, 0.0f, 1.0f) : 0.0f;
-    const float dx = qx - u * bx, dy = qy - u * by;
-    if (dx * dx + dy * dy < rho * rho) return false;
+Status SrtStarPlanner::start_grow(const Pose2& pose, const LaserScan& scan) {
+  job_scan_ = scan;
+  if (sectors_.begin(job_scan_, srt_) != Status::kOk) return Status::kInvalidArgument;
+  job_pose_ = pose;
+  job_from_idle_ = mode_ == PlannerMode::kIdle;
+  // Starting or restarting: hold where the vehicle is until the first waypoint is chosen.
+  if (job_from_idle_) waypoint_ = {pose.x, pose.y};
+  step_ = Step::kSectors;
+  last_work_ += work::kClassify;
+  return Status::kOk;
+}
+
+void SrtStarPlanner::start_choose(const Pose2& pose, const LaserScan& scan) {
+  job_scan_ = scan;
+  job_pose_ = pose;
+  step_ = Step::kPick;
+  live_ = tree_.frontier_count_of(current_);
+  last_work_ += 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
+}
+
+void SrtStarPlanner::work_on_arrival(TimeUs now) {
+  const uint32_t budget = srt_.arrival_work_per_cycle == 0 ? work::kUnbounded : srt_.arrival_work_per_cycle;
+  uint32_t used = last_work_;
+  while (step_ != Step::kNone && used < budget) {
+    switch (step_) {
+      case Step::kSectors:
+        used += sectors_.advance(job_scan_, budget - used);
+        if (sectors_.ready()) used += begin_node();
+        break;
+      case Step::kTree:
+        used += tree_.advance(sectors_, budget - used);
+        if (!tree_.adding()) {
+          used += drop_frontiers_seen_through_keep_outs();
+          step_ = Step::kPick;
+          live_ = tree_.frontier_count_of(current_);
+          used += 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
+        }
+        break;
+      case Step::kPick:
+        used += pick_frontier(now);
+        break;
+      case Step::kDraw:
+        used += draw_candidate();
+        break;
+      case Step::kPath:
+        used += check_path(budget - used, now);
+        break;
+      case Step::kNone:
+        break;
+    }
   }
-  return true;
+  last_work_ = used;
 }
 
-void SrtStarPlanner::choose_next(const Pose2& pose, const LaserScan& scan, TimeUs now) {
+uint32_t SrtStarPlanner::begin_node() {
+  uint16_t id = kNoNode;
+  Status st = tree_.begin_node(job_pose_, sectors_, job_from_idle_ ? kNoNode : current_, id);
+  if (st == Status::kCapacityExceeded) {
+    // The sectors were built from this scan: the new root is the arrival pose, and an empty
+    // tree always has room for it.
+    restart_tree(RestartReason::kTreeFull);
+    waypoint_ = {job_pose_.x, job_pose_.y};
+    st = tree_.begin_node(job_pose_, sectors_, kNoNode, id);
+  }
+  if (st != Status::kOk) {  // cannot happen: the pose is finite, the parent a node
+    step_ = Step::kNone;
+    return 0;
+  }
+  current_ = id;
+  target_node_ = kNoNode;
+  step_ = Step::kTree;
+  return work::kTableEntry;
+}
+
+uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
+  if (live_ == 0) return backtrack_or_finish(now);
   const SrtNode& node = tree_.nodes()[current_];
   // A waypoint must be at least min_step away along a ray with room for the vehicle. The rays
   // of the frontier's own sector come first, then those of the sectors 1, 2, ... up to
@@ -134,70 +179,197 @@ void SrtStarPlanner::choose_next(const Pose2& pose, const LaserScan& scan, TimeU
   const float min_step = 2.0f * guidance_.arrival_distance_m;
   const uint16_t min_step_mm = static_cast<uint16_t>(std::lround(min_step * 1000.0f));
   constexpr uint16_t kRays = SectorScan::kRaysPerSector;
-  for (std::size_t live = tree_.frontier_count_of(current_); live > 0; --live) {
-    const std::size_t fi = tree_.frontier_index_of(current_, prng_.below(static_cast<uint32_t>(live)));
-    Frontier& f = tree_.frontier(fi);
-    std::array<uint16_t, 2 * kRays> candidates{};  // sector * kRays + ray
-    uint16_t n = 0;
-    for (int dist = 0; dist <= srt_.ray_search_sectors && n == 0; ++dist) {
-      for (int side = -1; side <= 1; side += 2) {
-        if (dist == 0 && side > 0) continue;
-        const int sector = static_cast<int>(f.sector) + side * dist;
-        if (sector < 0 || sector >= node.sector_count) continue;
-        for (uint16_t j = 0; j < kRays; ++j) {
-          const uint16_t q = static_cast<uint16_t>(sector * kRays + j);
-          if (node.clear_mm[q] >= min_step_mm) candidates[n++] = q;
-        }
+  frontier_ = tree_.frontier_index_of(current_, prng_.below(static_cast<uint32_t>(live_)));
+  const Frontier& f = tree_.frontier(frontier_);
+  uint16_t n = 0;
+  for (int dist = 0; dist <= srt_.ray_search_sectors && n == 0; ++dist) {
+    for (int side = -1; side <= 1; side += 2) {
+      if (dist == 0 && side > 0) continue;
+      const int sector = static_cast<int>(f.sector) + side * dist;
+      if (sector < 0 || sector >= node.sector_count) continue;
+      for (uint16_t j = 0; j < kRays; ++j) {
+        const uint16_t q = static_cast<uint16_t>(sector * kRays + j);
+        if (node.clear_mm[q] >= min_step_mm) candidates_[n++] = q;
       }
     }
-    // SRT's random direction and step, validated (Freda and Oriolo's Valid()): the vehicle
-    // is up to d away from the node after a backtrack, so the straight path from where it is
-    // must keep the clearance from the returns of the scan it has just taken.
-    bool found = false;
-    Point2 p{};
-    while (n > 0 && !found) {
-      const uint16_t k = static_cast<uint16_t>(prng_.below(n));
-      const uint16_t q = candidates[k];
-      candidates[k] = candidates[--n];
-      const uint16_t sector = q / kRays, ray = q % kRays;
-      // A random fraction of the sector's radius, within the ray's clear distance.
-      const float r_clear = static_cast<float>(node.clear_mm[q]) * 1e-3f;
-      const float r_sector = static_cast<float>(node.radius_mm[sector]) * 1e-3f;
-      const float lo = srt_.step_min_fraction * r_sector, hi = srt_.step_max_fraction * r_sector;
-      const float dist = std::clamp(lo + (hi - lo) * prng_.uniform(), min_step, r_clear);
-      const float a = node.ray_angle(sector, ray);
-      p = {node.position.x + dist * std::cos(a), node.position.y + dist * std::sin(a)};
-      found = path_clear(pose, scan, p);
-    }
-    if (!found) {
-      tree_.remove_frontier(fi);
-      continue;
-    }
-    if (++f.attempts >= srt_.max_attempts_per_frontier) tree_.remove_frontier(fi);
-    mode_ = PlannerMode::kForward;
-    set_waypoint(p, now);
-    return;
   }
+  candidate_count_ = n;
+  step_ = Step::kDraw;
+  return 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
+}
+
+uint32_t SrtStarPlanner::draw_candidate() {
+  if (candidate_count_ == 0) {
+    // No valid waypoint for this frontier: dropped, the next one is tried.
+    tree_.remove_frontier(frontier_);
+    --live_;
+    step_ = Step::kPick;
+    return 1;
+  }
+  // SRT's random direction and step, validated (Freda and Oriolo's Valid()): the vehicle
+  // is up to d away from the node after a backtrack, so the straight path from where it is
+  // must keep the clearance from the returns of the scan it has just taken.
+  const SrtNode& node = tree_.nodes()[current_];
+  constexpr uint16_t kRays = SectorScan::kRaysPerSector;
+  const float min_step = 2.0f * guidance_.arrival_distance_m;
+  const uint16_t k = static_cast<uint16_t>(prng_.below(candidate_count_));
+  const uint16_t q = candidates_[k];
+  candidates_[k] = candidates_[--candidate_count_];
+  const uint16_t sector = q / kRays, ray = q % kRays;
+  // A random fraction of the sector's radius, within the ray's clear distance.
+  const float r_clear = static_cast<float>(node.clear_mm[q]) * 1e-3f;
+  const float r_sector = static_cast<float>(node.radius_mm[sector]) * 1e-3f;
+  const float lo = srt_.step_min_fraction * r_sector, hi = srt_.step_max_fraction * r_sector;
+  const float dist = std::clamp(lo + (hi - lo) * prng_.uniform(), min_step, r_clear);
+  const float a = node.ray_angle(sector, ray);
+  const Point2 p{node.position.x + dist * std::cos(a), node.position.y + dist * std::sin(a)};
+  // An operator keep-out is as good as a wall: the next candidate ray is tried.
+  const uint32_t keep_out_work = srt_.keep_out_count > 0 ? work::kKeepOutTest : 0;
+  if (crosses_keep_out({job_pose_.x, job_pose_.y}, p)) return work::kTableEntry + keep_out_work;
+  return work::kTableEntry + keep_out_work + start_path(p, false);
+}
+
+bool SrtStarPlanner::crosses_keep_out(Point2 a, Point2 b) const {
+  const float grow = srt_.clearance_m;
+  const float d[2] = {b.x - a.x, b.y - a.y};
+  const float o[2] = {a.x, a.y};
+  for (std::size_t i = 0; i < srt_.keep_out_count; ++i) {
+    const KeepOut& k = srt_.keep_out[i];
+    const float lo[2] = {k.x_min - grow, k.y_min - grow}, hi[2] = {k.x_max + grow, k.y_max + grow};
+    // Slabs: the part of the segment (parameter 0..1) inside the box on both axes.
+    float t0 = 0.0f, t1 = 1.0f;
+    for (int axis = 0; axis < 2 && t0 <= t1; ++axis) {
+      if (std::fabs(d[axis]) < 1e-9f) {
+        if (o[axis] < lo[axis] || o[axis] > hi[axis]) t0 = 2.0f;  // parallel and outside
+        continue;
+      }
+      float ta = (lo[axis] - o[axis]) / d[axis], tb = (hi[axis] - o[axis]) / d[axis];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+    }
+    if (t0 <= t1) return true;
+  }
+  return false;
+}
+
+uint32_t SrtStarPlanner::drop_frontiers_seen_through_keep_outs() {
+  if (srt_.keep_out_count == 0) return 0;
+  uint32_t used = 0;
+  const Point2 from = tree_.nodes()[current_].position;
+  for (std::size_t i = 0; i < tree_.frontiers().size();) {
+    const Frontier& f = tree_.frontiers()[i];
+    used += f.node == current_ ? work::kKeepOutTest : 0;
+    if (f.node == current_ && crosses_keep_out(from, f.position)) {
+      tree_.remove_frontier(i);
+    } else {
+      ++i;
+    }
+  }
+  return used + 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
+}
+
+uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
+  const SrtNode& node = tree_.nodes()[current_];
   if (node.parent != kNoNode) {
-    mode_ = PlannerMode::kBacktrack;
     // The tree edge is safe, but the vehicle may be up to d beside the node: if the straight
     // path from where it is to the parent is not clear, it first closes in on the node.
-    const float ox = node.position.x - pose.x, oy = node.position.y - pose.y;
+    const float ox = node.position.x - job_pose_.x, oy = node.position.y - job_pose_.y;
     const float half_d = 0.5f * guidance_.arrival_distance_m;
     const Point2 parent = tree_.nodes()[node.parent].position;
-    if (ox * ox + oy * oy > half_d * half_d && !path_clear(pose, scan, parent)) {
-      aligning_ = true;
-      target_node_ = current_;
-      set_waypoint(node.position, now);
-      return;
-    }
+    if (ox * ox + oy * oy > half_d * half_d) return start_path(parent, true);
+    mode_ = PlannerMode::kBacktrack;
     target_node_ = node.parent;
     set_waypoint(parent, now);
-    return;
+    step_ = Step::kNone;
+    return 1;
   }
   mode_ = PlannerMode::kFinished;
   target_node_ = kNoNode;
   set_waypoint(node.position, now);
+  step_ = Step::kNone;
+  return 1;
+}
+
+uint32_t SrtStarPlanner::start_path(Point2 p, bool backtrack) {
+  // The path is checked in the frame of the scan's clockwise edge, where the direction of
+  // every beam is tabled (SectorScan): no sine or cosine per beam.
+  const float edge = job_pose_.theta + SectorScan::start_of(job_scan_);
+  edge_cos_ = std::cos(edge);
+  edge_sin_ = std::sin(edge);
+  const float wx = p.x - job_pose_.x, wy = p.y - job_pose_.y;
+  path_ = PathCheck{};
+  path_.target = p;
+  path_.bx = edge_cos_ * wx + edge_sin_ * wy;
+  path_.by = -edge_sin_ * wx + edge_cos_ * wy;
+  path_.len2 = path_.bx * path_.bx + path_.by * path_.by;
+  path_.reach = std::sqrt(path_.len2) + srt_.clearance_m;
+  path_.backtrack = backtrack;
+  step_ = Step::kPath;
+  return work::kTableEntry;
+}
+
+uint32_t SrtStarPlanner::check_path(uint32_t budget, TimeUs now) {
+  uint32_t used = 0, skipped = 0;
+  const LaserScan& scan = job_scan_;
+  // After a backtrack the tables may be from a scan of another geometry (a planner fed by
+  // hand): then each beam's direction is computed.
+  const bool tabled = sectors_.beam_table_fits(scan);
+  const float step = std::fabs(scan.angle_step_rad);
+  const bool ccw = scan.angle_step_rad > 0.0f;
+  const float rho = srt_.clearance_m;
+  for (; path_.next_beam < scan.beam_count && !path_.blocked && used < budget; ++path_.next_beam) {
+    const std::size_t i = path_.next_beam;
+    const uint16_t r_mm = scan.range_mm[i];
+    const float r = static_cast<float>(r_mm) * 1e-3f;
+    if (r_mm < kMinValidRangeMm || r >= path_.reach) {  // too far to come within rho of the path
+      if (++skipped == work::kSkipBeams) {
+        skipped = 0;
+        ++used;
+      }
+      continue;
+    }
+    float bc, bs;
+    if (tabled) {
+      bc = sectors_.beam_cos(i);
+      bs = sectors_.beam_sin(i);
+      used += work::kPathBeam;
+    } else {
+      const std::size_t k = ccw ? i : scan.beam_count - 1 - i;
+      const float rel = (static_cast<float>(k) + 0.5f) * step;
+      bc = std::cos(rel);
+      bs = std::sin(rel);
+      used += work::kPathBeam + work::kTableEntry;
+    }
+    const float qx = r * bc, qy = r * bs;
+    const float u = path_.len2 > 0.0f ? std::clamp((qx * path_.bx + qy * path_.by) / path_.len2, 0.0f, 1.0f) : 0.0f;
+    const float dx = qx - u * path_.bx, dy = qy - u * path_.by;
+    if (dx * dx + dy * dy < rho * rho) path_.blocked = true;
+  }
+  if (!path_.blocked && path_.next_beam < scan.beam_count) return used + 1;  // resumes next cycle
+  const bool clear = !path_.blocked;
+  if (path_.backtrack) {
+    const SrtNode& node = tree_.nodes()[current_];
+    mode_ = PlannerMode::kBacktrack;
+    if (clear) {
+      target_node_ = node.parent;
+      set_waypoint(path_.target, now);
+    } else {
+      aligning_ = true;
+      target_node_ = current_;
+      set_waypoint(node.position, now);
+    }
+    step_ = Step::kNone;
+  } else if (clear) {
+    Frontier& f = tree_.frontier(frontier_);
+    if (++f.attempts >= srt_.max_attempts_per_frontier) tree_.remove_frontier(frontier_);
+    mode_ = PlannerMode::kForward;
+    set_waypoint(path_.target, now);
+    step_ = Step::kNone;
+  } else {
+    step_ = Step::kDraw;  // the next candidate ray of this frontier
+  }
+  return used + 1;
 }
 
 void SrtStarPlanner::set_waypoint(Point2 p, TimeUs now) {

@@ -34,6 +34,10 @@ struct FlightOptions {
 
 // Parses the options of mission `kind`; "" or the reason they are unusable.
 std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOptions& options, FlightOptions& out);
+// Explore's keep-out boxes, "x_min,y_min,x_max,y_max[;...]" in metres of the navigation frame
+// (the world frame: the estimate starts at the world's start pose), into srt.keep_out; "" or
+// the reason the text is unusable.
+std::string parse_keep_outs(const std::string& text, exploration::SrtParams& srt);
 // Reads a waypoint file; "" or "FILE:LINE: reason".
 std::string load_waypoints(const std::string& path, autonomy::StackConfig& stack);
 

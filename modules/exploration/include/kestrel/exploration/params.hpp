@@ -3,6 +3,7 @@
 // the wall-following velocity field (section III), the SRT-Star frontier planner (section IV,
 // after Freda and Oriolo) and the blending and practical limits (Algorithm 1, section V).
 // One struct, defaults and units inline; capacities are compile-time constants.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -14,6 +15,15 @@ inline constexpr std::size_t kMaxSectors = 64;                      // sectors p
 inline constexpr std::size_t kMaxNodes = 256;                       // SRT nodes (waypoints reached)
 inline constexpr std::size_t kMaxFrontiers = 512;                   // live frontier points of the whole tree
 inline constexpr std::size_t kMaxLocalFrontiers = 3 * kMaxSectors;  // per scan: mid, left, right
+inline constexpr std::size_t kMaxKeepOuts = 4;                      // operator keep-out boxes
+
+// An operator-supplied region SRT-Star never sends the vehicle into or through, in the
+// navigation frame (m): a laser-only explorer cannot tell a glass window from a doorway (the
+// beams pass through), so, like paper 004's explorer, whose operator marks the nodes "south of
+// window" off limits, it is told. Axis-aligned; grown by the clearance when used.
+struct KeepOut {
+  float x_min = 0, y_min = 0, x_max = 0, y_max = 0;
+};
 
 // How equation 3's sum over the n in-range beams is scaled. The paper sums plainly, so its
 // K_wf is a gain per beam and the field grows with the laser's resolution; kPerRadian weights
@@ -47,9 +57,21 @@ struct SrtParams {
                                           // radius moved along any bearing of the sector up to
                                           // there touches no return (vehicle radius + margin)
   uint8_t ray_search_sectors = 3;         // a frontier's waypoint may use rays this many sectors off
+                                          // (6 let more kinematic flights through doors, 6 -> 9 of
+                                          // 10, but in kestrel-sim twice as many gt-building flights
+                                          // collided: the extra, oblique waypoints pass door jambs
+                                          // closely while the estimate drifts)
   float coverage_margin_m = 0.05f;        // a frontier this deep inside another safe region is gone
   uint8_t max_attempts_per_frontier = 2;  // waypoints drawn for one frontier before it is dropped
   uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
+  uint32_t arrival_work_per_cycle = 15000;  // work units (about 100 Verdex instructions each,
+                                            // work_units.hpp) of the arrival step per guidance
+                                            // cycle: 1.5 M of the guidance share's 2 M cycles;
+                                            // 0 does the whole step in the arriving cycle
+  std::array<KeepOut, kMaxKeepOuts> keep_out{};  // the first keep_out_count are used:
+  uint8_t keep_out_count = 0;                    // waypoints and their straight paths stay out
+                                                 // of them, frontiers seen through them are
+                                                 // dropped
 };
 
 struct GuidanceParams {

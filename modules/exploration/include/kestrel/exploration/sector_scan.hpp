@@ -21,12 +21,14 @@
 // holds one is not obstacle-free but its radius comes from its other beams (a sector of only
 // such beams has radius zero).
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/static_vector.hpp"
 #include "kestrel/core/status.hpp"
 #include "kestrel/exploration/params.hpp"
+#include "kestrel/exploration/work_units.hpp"
 
 namespace kestrel::exploration {
 
@@ -47,6 +49,16 @@ class SectorScan {
   // kInvalidArgument for bad params or a scan without beams or angles; the object is then empty.
   Status build(const LaserScan& scan, const SrtParams& params);
 
+  // The same in slices, for a caller with a time budget per cycle: begin() checks the input
+  // and classifies the beams into sectors (radii, obstacle-free flags); advance() builds the
+  // direction tables when the geometry changed, erodes the rays beam by beam and, last, rounds
+  // them and finds the frontiers, stopping once it has used `budget` work units (it finishes
+  // the item it is on, so it may overrun by one beam's rays). It returns the units used.
+  // Every call must get the scan begin() got. ready() once the result equals build()'s.
+  Status begin(const LaserScan& scan, const SrtParams& params);
+  uint32_t advance(const LaserScan& scan, uint32_t budget);
+  bool ready() const { return stage_ == Stage::kReady; }
+
   uint16_t count() const { return count_; }
   // Sector s spans body angles [start + s * width, start + (s + 1) * width), width > 0.
   float start_rad() const { return start_rad_; }
@@ -62,8 +74,24 @@ class SectorScan {
   bool obstacle_free(uint16_t s) const { return free_[s]; }
   const IVector<LocalFrontier>& frontiers() const { return frontiers_; }
 
+  // Direction of beam i of the scan last begun, from the sectors' clockwise edge start_rad():
+  // cosine and sine, valid once ready() (tabled once per laser geometry).
+  float beam_cos(std::size_t i) const { return beam_cos_[beam_slot(i)]; }
+  float beam_sin(std::size_t i) const { return beam_sin_[beam_slot(i)]; }
+  // Whether those tables hold the beams of `scan` (a scan of the same geometry).
+  bool beam_table_fits(const LaserScan& scan) const {
+    return ready() && beam_table_size_ == scan.beam_count && beam_table_step_ == std::fabs(scan.angle_step_rad) &&
+           ccw_ == (scan.angle_step_rad > 0.0f);
+  }
+  // Angle of the clockwise edge of `scan`'s field of view (start_rad() for the scan begun).
+  static float start_of(const LaserScan& scan);
+
  private:
-  void erode(const LaserScan& scan, const SrtParams& params, uint16_t rp_mm);
+  enum class Stage : uint8_t { kEmpty, kRayTable, kBeamTable, kErode, kFinish, kReady };
+  std::size_t beam_slot(std::size_t i) const { return ccw_ ? i : beams_ - 1 - i; }
+  // One beam's erosion of the rays; returns its work units (0 for a beam too far to erode).
+  uint32_t erode_beam(const LaserScan& scan, std::size_t i);
+  void finish();
 
   std::array<uint16_t, kMaxSectors> radius_mm_{};
   std::array<uint16_t, kMaxSectors * kRaysPerSector> clear_mm_{};
@@ -72,6 +100,23 @@ class SectorScan {
   float start_rad_ = 0;
   float width_rad_ = 0;
   uint16_t count_ = 0;
+
+  // The erosion in progress.
+  Stage stage_ = Stage::kEmpty;
+  std::array<float, kMaxSectors * kRaysPerSector> clear_{};  // m
+  float rho_ = 0, cap_ = 0, rp_m_ = 0;
+  int32_t jump_mm_ = 1;
+  std::size_t beams_ = 0;
+  std::size_t cursor_ = 0;  // next table entry or beam
+  bool ccw_ = true;
+  // Direction tables, kept while the geometry stays: ray k of the sectors at (k + 1/2) of a
+  // ray width, and beam slot k at (k + 1/2) of a beam step, from start_rad_.
+  std::array<float, kMaxSectors * kRaysPerSector> ray_cos_{}, ray_sin_{};
+  std::array<float, kMaxBeams> beam_cos_{}, beam_sin_{};
+  float ray_table_width_ = 0;  // 0: no table
+  uint16_t ray_table_count_ = 0;
+  float beam_table_step_ = 0;  // 0: no table
+  std::size_t beam_table_size_ = 0;
 };
 
 }  // namespace kestrel::exploration

@@ -20,6 +20,16 @@
 // past never traps the planner); when the waypoint is not reached within the time limit, or
 // the tree is full when a node must be added, the tree is erased and exploration restarts from
 // the current pose with a new root.
+//
+// The arrival step (sectors and their erosion, the new node and its frontiers, the choice of
+// the next waypoint) costs several million instructions on the Verdex, more than a guidance
+// cycle's share, so it runs in slices: at most srt.arrival_work_per_cycle work units
+// (work_units.hpp) per update(), on a copy of the arrival's pose and scan. Meanwhile busy() is
+// true, waypoint() stays where it was (the waypoint just reached; the vehicle's position when
+// exploration starts or restarts), the poses and scans given are not used and the time limit
+// does not run. The result, once done, is the one a single call would give (tested); the new
+// waypoint's time is that of the call that finishes it.
+#include <array>
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
@@ -57,7 +67,9 @@ class SrtStarPlanner {
 
   PlannerMode mode() const { return mode_; }
   bool finished() const { return mode_ == PlannerMode::kFinished; }
-  bool has_waypoint() const { return mode_ != PlannerMode::kIdle; }
+  bool has_waypoint() const { return mode_ != PlannerMode::kIdle || busy(); }
+  bool busy() const { return step_ != Step::kNone; }  // an arrival step is being worked on
+  uint32_t last_work() const { return last_work_; }    // work units the last update() used
   Point2 waypoint() const { return waypoint_; }
   uint16_t current_node() const { return current_; }     // node the vehicle is leaving or at
   uint16_t target_node() const { return target_node_; }  // node of a backtrack, else kNoNode
@@ -70,12 +82,25 @@ class SrtStarPlanner {
   TimeUs waypoint_time() const { return waypoint_time_; }
 
  private:
-  void restart(const Pose2& pose, const LaserScan& scan, TimeUs now, RestartReason why);
-  Status grow(const Pose2& pose, const LaserScan& scan, TimeUs now);
-  void choose_next(const Pose2& pose, const LaserScan& scan, TimeUs now);
-  // Whether the straight path from pose to p keeps the clearance from every return of scan.
-  bool path_clear(const Pose2& pose, const LaserScan& scan, Point2 p) const;
+  enum class Step : uint8_t { kNone, kSectors, kTree, kPick, kDraw, kPath };
+  // Starts the arrival step's slices on a copy of (pose, scan).
+  Status start_grow(const Pose2& pose, const LaserScan& scan);
+  void start_choose(const Pose2& pose, const LaserScan& scan);
+  void restart_tree(RestartReason why);
+  // Runs slices of the arrival step until it is done or the cycle's budget is used.
+  void work_on_arrival(TimeUs now);
+  uint32_t begin_node();
+  uint32_t pick_frontier(TimeUs now);
+  uint32_t draw_candidate();
+  uint32_t backtrack_or_finish(TimeUs now);
+  // The straight path from the arrival pose to `p` against the returns of the arrival scan.
+  uint32_t start_path(Point2 p, bool backtrack);
+  uint32_t check_path(uint32_t budget, TimeUs now);
   void set_waypoint(Point2 p, TimeUs now);
+  // Whether the segment a-b enters a keep-out box grown by the clearance (SrtParams::keep_out).
+  bool crosses_keep_out(Point2 a, Point2 b) const;
+  // Drops the current node's frontiers whose sight line from the node crosses a keep-out box.
+  uint32_t drop_frontiers_seen_through_keep_outs();
 
   SrtParams srt_{};
   GuidanceParams guidance_{};
@@ -91,6 +116,26 @@ class SrtStarPlanner {
   uint32_t waypoints_issued_ = 0;
   uint32_t restarts_ = 0;
   RestartReason last_restart_ = RestartReason::kNone;
+
+  // The arrival step in progress.
+  Step step_ = Step::kNone;
+  Pose2 job_pose_{};
+  LaserScan job_scan_{};
+  bool job_from_idle_ = false;  // a root is grown (start or restart), not a child
+  uint32_t last_work_ = 0;
+  std::size_t live_ = 0;        // frontiers of the current node not yet tried in this choice
+  std::size_t frontier_ = 0;    // index of the frontier being tried
+  std::array<uint16_t, 2 * SectorScan::kRaysPerSector> candidates_{};  // sector * kRays + ray
+  uint16_t candidate_count_ = 0;
+  struct PathCheck {
+    Point2 target{};      // world frame
+    float bx = 0, by = 0;  // target in the frame of the scan's clockwise edge
+    float len2 = 0, reach = 0;
+    std::size_t next_beam = 0;
+    bool blocked = false;
+    bool backtrack = false;  // a check of the way to the parent, not of a new waypoint
+  } path_;
+  float edge_cos_ = 1, edge_sin_ = 0;  // of the arrival scan's clockwise edge, world frame
 };
 
 }  // namespace kestrel::exploration

@@ -41,8 +41,9 @@ struct SrtNode {
 
   // The sector holding world point p, or -1 when p is outside the scanned field of view.
   int sector_of(Point2 p) const;
-  // Strictly inside the safe region by at least margin_m.
-  bool contains(Point2 p, float margin_m) const;
+  // Strictly inside the safe region by at least margin_m. Adds the test's work units (see
+  // SectorScan's work namespace) to *used when given.
+  bool contains(Point2 p, float margin_m, uint32_t* used = nullptr) const;
 };
 
 struct Frontier {
@@ -64,6 +65,16 @@ class SrtStarTree {
   // sector set or an unknown parent.
   Status add_node(const Pose2& pose, const SectorScan& sectors, uint16_t parent, uint16_t& id);
 
+  // The same in slices, for a caller with a time budget per cycle: begin_node() checks and
+  // appends the node (same results as add_node); advance() then removes the older frontiers the
+  // new region covers and adds the node's own, stopping once it has used `budget` work units
+  // (SectorScan's work namespace; it may overrun by one region test), and returns the units
+  // used. adding() until it is done. `sectors` must be the object begin_node() got, unchanged,
+  // and the tree must not be changed otherwise in between.
+  Status begin_node(const Pose2& pose, const SectorScan& sectors, uint16_t parent, uint16_t& id);
+  uint32_t advance(const SectorScan& sectors, uint32_t budget);
+  bool adding() const { return stage_ != Stage::kIdle; }
+
   // Whether p lies inside any node's safe region (by margin_m), ignoring node `except`.
   bool in_safe_region(Point2 p, float margin_m, uint16_t except = kNoNode) const;
 
@@ -81,10 +92,18 @@ class SrtStarTree {
   float coverage_margin_m = 0.05f;                                   // set from SrtParams by the planner
 
  private:
+  enum class Stage : uint8_t { kIdle, kPrune, kPlace, kTest };
   StaticVector<SrtNode, kMaxNodes> nodes_;
   StaticVector<Frontier, kMaxFrontiers> frontiers_;
   uint32_t frontiers_dropped_ = 0;
   uint32_t frontiers_removed_ = 0;
+  // The node being added: the frontier or local frontier next in turn, and for a local
+  // frontier placed in the world, the next older node to test it against.
+  Stage stage_ = Stage::kIdle;
+  std::size_t cursor_ = 0;
+  std::size_t test_node_ = 0;
+  Frontier placed_{};
+  float new_cos_ = 1, new_sin_ = 0;  // of the new node's heading
 };
 
 }  // namespace kestrel::exploration

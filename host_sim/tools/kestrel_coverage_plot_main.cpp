@@ -1,0 +1,140 @@
+// kestrel-coverage-plot: coverage against time of several explorers on the same axes (issue 6,
+// paper 002's comparison of the blend with wall following and SRT-Star alone), each curve the
+// mean over runs (seeds) of their coverage_vs_time.csv records (metrics::mean_coverage: a run
+// that ended early keeps its last coverage). One panel per world and laser.
+//
+//   kestrel-coverage-plot --out PNG [--step S] [--end S]
+//       --panel TITLE --series LABEL=CSV[,CSV...] [--series ...] [--panel TITLE ...]
+//
+// Exit status 0 on success, 2 for a usage error, 1 for a record that cannot be read or parsed
+// or a picture that cannot be written.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "kestrel/metrics/coverage_curve.hpp"
+#include "kestrel/output/plot.hpp"
+#include "kestrel/output/png_writer.hpp"
+
+using namespace kestrel;
+
+namespace {
+
+constexpr output::Rgb kPalette[] = {output::colors::kBlue, output::colors::kOrange, output::colors::kGreen,
+                                    output::colors::kRed,  output::colors::kPurple, output::colors::kCyan};
+
+struct SeriesSpec {
+  std::string label;
+  std::vector<std::string> files;
+};
+struct PanelSpec {
+  std::string title;
+  std::vector<SeriesSpec> series;
+};
+
+int usage(const std::string& msg) {
+  std::fprintf(stderr,
+               "kestrel-coverage-plot: %s\n"
+               "usage: kestrel-coverage-plot --out PNG [--step S] [--end S]\n"
+               "           --panel TITLE --series LABEL=CSV[,CSV...] [--series ...] [--panel ...]\n",
+               msg.c_str());
+  return 2;
+}
+
+bool positive_number(const std::string& s, double& out) {
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' && std::isfinite(out) && out > 0.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out;
+  double step = 1.0, end = 0.0;
+  std::vector<PanelSpec> panels;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) return usage(a + " needs a value");
+    const std::string v = argv[++i];
+    if (a == "--out") {
+      out = v;
+    } else if (a == "--step") {
+      if (!positive_number(v, step)) return usage("--step: '" + v + "' is not a positive number");
+    } else if (a == "--end") {
+      if (!positive_number(v, end)) return usage("--end: '" + v + "' is not a positive number");
+    } else if (a == "--panel") {
+      panels.push_back({v, {}});
+    } else if (a == "--series") {
+      if (panels.empty()) return usage("--series before any --panel");
+      const std::size_t eq = v.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == v.size()) return usage("--series wants LABEL=CSV[,CSV...]");
+      SeriesSpec s{v.substr(0, eq), {}};
+      std::stringstream files(v.substr(eq + 1));
+      for (std::string f; std::getline(files, f, ',');)
+        if (!f.empty()) s.files.push_back(f);
+      panels.back().series.push_back(s);
+    } else {
+      return usage("unknown option " + a);
+    }
+  }
+  if (out.empty()) return usage("--out is required");
+  if (panels.empty()) return usage("no --panel");
+
+  // Read every record first: the time axis ends where the longest run ends (or at --end).
+  std::vector<std::vector<std::vector<metrics::CoverageCurve>>> runs(panels.size());
+  double last_t = 0.0;
+  for (std::size_t p = 0; p < panels.size(); ++p) {
+    if (panels[p].series.empty()) return usage("panel '" + panels[p].title + "' has no --series");
+    for (const SeriesSpec& s : panels[p].series) {
+      runs[p].emplace_back();
+      for (const std::string& f : s.files) {
+        std::ifstream in(f);
+        std::stringstream text;
+        text << in.rdbuf();
+        if (!in) {
+          std::fprintf(stderr, "kestrel-coverage-plot: %s: cannot be read\n", f.c_str());
+          return 1;
+        }
+        Result<metrics::CoverageCurve> c = metrics::parse_coverage_csv(text.str());
+        if (!c.ok()) {
+          std::fprintf(stderr, "kestrel-coverage-plot: %s: %s\n", f.c_str(), to_string(c.status()));
+          return 1;
+        }
+        last_t = std::max(last_t, c.value().t_s.back());
+        runs[p].back().push_back(std::move(c.value()));
+      }
+    }
+  }
+  if (end <= 0.0) end = last_t > 0.0 ? last_t : 1.0;
+
+  std::vector<output::Panel> plot;
+  for (std::size_t p = 0; p < panels.size(); ++p) {
+    output::Panel panel{panels[p].title + ": coverage", "%", {}};
+    for (std::size_t k = 0; k < panels[p].series.size(); ++k) {
+      const Result<metrics::CoverageCurve> m = metrics::mean_coverage(runs[p][k], step, end);
+      if (!m.ok()) {
+        std::fprintf(stderr, "kestrel-coverage-plot: series '%s': %s\n", panels[p].series[k].label.c_str(),
+                     to_string(m.status()));
+        return 1;
+      }
+      output::Series s{panels[p].series[k].label, kPalette[k % std::size(kPalette)], m.value().t_s, {}};
+      for (double c : m.value().coverage) s.y.push_back(100.0 * c);
+      panel.series.push_back(std::move(s));
+    }
+    // The 90 % that coverage_t90_s reports crossing, and 0 so every panel starts from the floor.
+    panel.series.push_back({"90 %", output::colors::kGrey, {0.0, end}, {90.0, 90.0}});
+    panel.series.push_back({"", output::colors::kWhite, {0.0}, {0.0}});
+    plot.push_back(std::move(panel));
+  }
+  const output::Canvas canvas = output::plot_panels(plot, "time [s]", 1000, 320);
+  if (output::write_png(out, canvas) != Status::kOk) {
+    std::fprintf(stderr, "kestrel-coverage-plot: %s: cannot be written\n", out.c_str());
+    return 1;
+  }
+  return 0;
+}

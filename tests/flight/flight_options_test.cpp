@@ -1,0 +1,41 @@
+// kestrel-sim's explore options: the operator's keep-out boxes (--mission-arg keepout=...).
+#include <gtest/gtest.h>
+
+#include "kestrel/flight/autonomy_mission.hpp"
+
+namespace kestrel::flight {
+namespace {
+
+TEST(FlightOptions, KeepOutBoxesParseIntoTheExplorerParameters) {
+  sim::MissionOptions opt;
+  opt.values["keepout"] = "2,8.8,5,9.2;10,10,11,11.5";
+  FlightOptions f;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
+  const exploration::SrtParams& srt = f.stack.explorer.srt;
+  ASSERT_EQ(srt.keep_out_count, 2);
+  EXPECT_FLOAT_EQ(srt.keep_out[0].x_min, 2.0f);
+  EXPECT_FLOAT_EQ(srt.keep_out[0].y_min, 8.8f);
+  EXPECT_FLOAT_EQ(srt.keep_out[0].x_max, 5.0f);
+  EXPECT_FLOAT_EQ(srt.keep_out[0].y_max, 9.2f);
+  EXPECT_FLOAT_EQ(srt.keep_out[1].y_max, 11.5f);
+  EXPECT_EQ(f.stack.explorer.validate(), Status::kOk);
+}
+
+TEST(FlightOptions, MalformedKeepOutsAreRefusedWithAReason) {
+  exploration::SrtParams srt;
+  EXPECT_NE(parse_keep_outs("", srt), "");
+  EXPECT_NE(parse_keep_outs("1,2,3", srt), "");            // three numbers
+  EXPECT_NE(parse_keep_outs("1,2,3,x", srt), "");          // not a number
+  EXPECT_NE(parse_keep_outs("5,0,1,1", srt), "");          // corners swapped
+  EXPECT_NE(parse_keep_outs("0,0,1,1;0,0,1,1;0,0,1,1;0,0,1,1;0,0,1,1", srt), "");  // five boxes
+  EXPECT_EQ(parse_keep_outs("0,0,1,1;2,2,3,3", srt), "");
+  EXPECT_EQ(srt.keep_out_count, 2);
+  // Not an option of the other missions.
+  sim::MissionOptions opt;
+  opt.values["keepout"] = "0,0,1,1";
+  FlightOptions f;
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, opt, f), "");
+}
+
+}  // namespace
+}  // namespace kestrel::flight
