@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "kestrel/cli/arg_reader.hpp"
 #include "kestrel/metrics/coverage_curve.hpp"
 #include "kestrel/output/plot.hpp"
 #include "kestrel/output/png_writer.hpp"
@@ -45,43 +46,42 @@ int usage(const std::string& msg) {
   return 2;
 }
 
-bool positive_number(const std::string& s, double& out) {
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return !s.empty() && *end == '\0' && std::isfinite(out) && out > 0.0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string out;
   double step = 1.0, end = 0.0;
   std::vector<PanelSpec> panels;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) return usage(a + " needs a value");
-    const std::string v = argv[++i];
-    if (a == "--out") {
-      out = v;
-    } else if (a == "--step") {
-      if (!positive_number(v, step)) return usage("--step: '" + v + "' is not a positive number");
-    } else if (a == "--end") {
-      if (!positive_number(v, end)) return usage("--end: '" + v + "' is not a positive number");
-    } else if (a == "--panel") {
-      panels.push_back({v, {}});
-    } else if (a == "--series") {
-      if (panels.empty()) return usage("--series before any --panel");
+  cli::ArgReader args(argc, argv);
+  while (args.next()) {
+    std::string v;
+    if (args.is("--out")) {
+      args.take(out);
+    } else if (args.is("--step")) {
+      args.take_double(step, 1e-6, 1e9);
+    } else if (args.is("--end")) {
+      args.take_double(end, 1e-6, 1e9);
+    } else if (args.is("--panel")) {
+      if (args.take(v)) panels.push_back({v, {}});
+    } else if (args.is("--series")) {
+      if (!args.take(v)) break;
       const std::size_t eq = v.find('=');
-      if (eq == std::string::npos || eq == 0 || eq + 1 == v.size()) return usage("--series wants LABEL=CSV[,CSV...]");
-      SeriesSpec s{v.substr(0, eq), {}};
-      std::stringstream files(v.substr(eq + 1));
-      for (std::string f; std::getline(files, f, ',');)
-        if (!f.empty()) s.files.push_back(f);
-      panels.back().series.push_back(s);
+      if (panels.empty()) {
+        args.fail("--series before any --panel");
+      } else if (eq == std::string::npos || eq == 0 || eq + 1 == v.size()) {
+        args.fail("--series wants LABEL=CSV[,CSV...], got '" + v + "'");
+      } else {
+        SeriesSpec sp{v.substr(0, eq), {}};
+        std::stringstream files(v.substr(eq + 1));
+        for (std::string f; std::getline(files, f, ',');)
+          if (!f.empty()) sp.files.push_back(f);
+        panels.back().series.push_back(sp);
+      }
     } else {
-      return usage("unknown option " + a);
+      args.unknown();
     }
   }
+  if (!args.ok()) return usage(args.error());
   if (out.empty()) return usage("--out is required");
   if (panels.empty()) return usage("no --panel");
 
