@@ -77,8 +77,8 @@ int main(int argc, char** argv) {
   }
 
   logs::LogFormat fmt = logs::LogFormat::kCarmen;
-  if (!ok(logs::parse_log_format(format, fmt))) {
-    usage();
+  if (!ok(logs::parse_log_format(format, fmt))) {  // the reader's own list, should it differ
+    std::fprintf(stderr, "kestrel-replay: --format: the log reader does not know '%s'\n", format.c_str());
     return 2;
   }
   logs::OpenLogOptions opts;

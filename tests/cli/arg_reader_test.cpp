@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "kestrel/cli/arg_reader.hpp"
@@ -104,13 +105,16 @@ TEST(ArgReader, ReportsTheFirstMistake) {
       }
     }
     EXPECT_FALSE(r.ok());
-    return r.error();
+    EXPECT_FALSE(r.next()) << "the walk goes on after a mistake";
+    return std::make_pair(r.error(), seen);
   };
-  EXPECT_EQ(first_error({"--seed", "abc", "--bogus"}), "--seed: 'abc' is not a non-negative integer");
-  EXPECT_EQ(first_error({"--n", "11"}), "--n: '11' is not an integer in [1, 10]");
-  EXPECT_EQ(first_error({"--n", "2.5"}), "--n: '2.5' is not an integer in [1, 10]");
-  EXPECT_EQ(first_error({"--out"}), "option --out needs a value");
-  EXPECT_EQ(first_error({"--out", "d", "--bogus", "--seed", "x"}), "unknown option '--bogus' (see --help)");
+  using R = std::pair<std::string, int>;  // the error, and how many options were walked
+  EXPECT_EQ(first_error({"--seed", "abc", "--bogus"}), R("--seed: 'abc' is not a non-negative integer", 1));
+  EXPECT_EQ(first_error({"--n", "11"}), R("--n: '11' is not an integer in [1, 10]", 1));
+  EXPECT_EQ(first_error({"--n", "2.5"}), R("--n: '2.5' is not an integer in [1, 10]", 1));
+  EXPECT_EQ(first_error({"--out"}), R("option --out needs a value", 1));
+  EXPECT_EQ(first_error({"--out", "--seed", "3"}), R("option --out needs a value", 1));
+  EXPECT_EQ(first_error({"--out", "d", "--bogus", "--seed", "x"}), R("unknown option '--bogus'", 2));
 }
 
 }  // namespace

@@ -257,6 +257,39 @@ TEST(ScanMatcher, RejectsBadScans) {
   EXPECT_LT(std::hypot(m.measurement.pose.x, m.measurement.pose.y), 0.004f);
 }
 
+// Only the points the map can judge are scored, and the score is their mean: a scan whose
+// only points inside the 7.7 m map are a few on a post (the rest on a hall's walls 20 m away)
+// fits them perfectly, yet that is too little to be a match. It is lost, not confident.
+TEST(ScanMatcher, FewScoredPointsAreLostNotConfident) {
+  const std::vector<test::Wall> post{{1.5f, -0.02f, 1.5f, 0.02f}};
+  std::vector<test::Wall> room = test::room();
+  room.insert(room.end(), post.begin(), post.end());
+  const std::vector<test::Wall> hall{{-20, -20, 20, -20}, {20, -20, 20, 20}, {20, 20, -20, 20}, {-20, 20, -20, -20},
+                                     post[0]};
+  Rig r;
+  ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, room, 1081, 4.712f, at(0))).ok());
+  const LaserScan far = test::cast_scan({0, 0, 0}, hall, 1081, 4.712f, at(1));
+  const ScanMatch m = r.m->process(far);
+  EXPECT_GE(m.points, 1000);  // a full scan: the post and the hall
+  EXPECT_GT(m.score, 0.8f);   // the post fits...
+  EXPECT_NE(m.measurement.flags & match_flag::kLost, 0u);  // ...but is no match
+  EXPECT_GE(m.measurement.covariance(0, 0), 1e3f);  // the filter is told so
+  // The same room again is matched: the rule does not reject ordinary scans.
+  EXPECT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, room, 1081, 4.712f, at(2))).ok());
+}
+
+// A configuration whose points cannot be held as int16 cells (the search's transform) is
+// refused at configure(), not found out scan by scan.
+TEST(ScanMatcher, RefusesARangeBeyondTheSearchsCells) {
+  Params p;
+  p.resolution_m = 0.0005f;
+  p.max_range_m = 29.0f;  // 58,000 cells
+  Rig r;
+  EXPECT_EQ(r.m->configure(p), Status::kInvalidArgument);
+  p.resolution_m = 0.001f;  // 29,000 cells
+  EXPECT_EQ(r.m->configure(p), Status::kOk);
+}
+
 // Asynchronous mode: until the background rebuild publishes a map the matcher says so; after
 // it, matching proceeds.
 TEST(ScanMatcher, AsynchronousRebuild) {

@@ -43,7 +43,7 @@ std::vector<Entry> read_log(const std::string& path, int max) {
 
 struct Replay {
   double rpe_t = 0, rpe_r_deg = 0;
-  int pairs = 0, lost = 0, jumps = 0;
+  int pairs = 0, lost = 0, jumps = 0, rejected = 0;
 };
 
 LikelihoodMapStorage<2000, kMaxKeyframes * kMaxBeams> g_a, g_b;
@@ -59,7 +59,10 @@ Replay replay(const std::vector<Entry>& log) {
   bool have_prev = false;
   for (std::size_t i = 0; i < log.size(); ++i) {
     const ScanMatch r = m.process(log[i].scan);
-    if (!r.ok()) continue;  // intel has stamps running backwards: rejected, as in the replay
+    if (!r.ok()) {  // intel has stamps running backwards: rejected, as in the replay
+      ++out.rejected;
+      continue;
+    }
     out.lost += (r.measurement.flags & match_flag::kLost) != 0;
     const Pose2d e = r.measurement.pose.cast<double>();
     if (have_prev) {
@@ -85,6 +88,8 @@ TEST(ScanMatcherRealData, Freiburg079Slice) {
   const auto log = read_log(test::shared_data_path("carmen/freiburg-079.log.gz"), kShort ? 60 : 250);
   if (log.empty()) GTEST_SKIP() << "shared data not available";
   const Replay r = replay(log);
+  EXPECT_EQ(r.rejected, 0);
+  EXPECT_EQ(r.pairs, static_cast<int>(log.size()) - 1);  // every scan matched: the RPE is over all
   EXPECT_EQ(r.lost, 0);
   EXPECT_EQ(r.jumps, 0);
   EXPECT_LT(r.rpe_t, 0.03);
@@ -101,6 +106,8 @@ TEST(ScanMatcherRealData, IntelCorridorsSlice) {
   const auto log = read_log(test::shared_data_path("carmen/intel.log.gz"), n);
   if (log.empty()) GTEST_SKIP() << "shared data not available";
   const Replay r = replay(log);
+  EXPECT_LE(r.rejected, 4);  // the whole log has 4 scans stamped before their predecessor
+  EXPECT_GE(r.pairs, static_cast<int>(log.size()) - 1 - r.rejected);
   EXPECT_EQ(r.lost, 0);
   EXPECT_LE(r.jumps, kShort ? 4 : 9);  // 40 scans under qemu: a loose guard only (3, 0.116 m)
   EXPECT_LT(r.rpe_t, kShort ? 0.15 : 0.09);

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <random>
 #include <vector>
@@ -213,6 +214,20 @@ TEST(CorrelativeSearch, PointsFarOutsideTheMapChangeNothing) {
   EXPECT_EQ(a.tx, b.tx);
   EXPECT_EQ(a.ty, b.ty);
   EXPECT_EQ(e.score, b.score);
+}
+
+// Points the int16 transform cannot hold, and non-finite points, are refused by setup().
+TEST(CorrelativeSearch, RejectsPointsItCannotHold) {
+  Fixture f(0.02f);
+  auto pts = test::to_points(test::cast_scan({0, 0, 0}, test::room(), 361));
+  const LikelihoodMap* m = f.local->acquire();
+  EXPECT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 8, 4, 0.0044f), Status::kOk);
+  EXPECT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 8, 4, 0.0044f, 0, 700.0f), Status::kInvalidArgument);  // 35,000 cells
+  pts.x[3] = 700.0f;
+  EXPECT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 8, 4, 0.0044f), Status::kInvalidArgument);
+  pts.x[3] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 8, 4, 0.0044f), Status::kInvalidArgument);
+  f.local->release();
 }
 
 TEST(CorrelativeSearch, RejectsOversizedWindows) {

@@ -56,7 +56,8 @@ bool ArgReader::next() {
 }
 
 bool ArgReader::take(std::string& out) {
-  if (i_ + 1 >= argc_) {
+  // "--out --record" is a forgotten value, not a directory named "--record".
+  if (i_ + 1 >= argc_ || std::string(argv_[i_ + 1]).rfind("--", 0) == 0) {
     fail("option " + option_ + " needs a value");
     return false;
   }
@@ -70,6 +71,7 @@ bool ArgReader::take_number(double& out, double lo, double hi, bool integer) {
   double d = 0;
   if (!to_double(v, d) || d < lo || d > hi || (integer && d != std::floor(d))) {
     std::ostringstream why;
+    why.precision(15);  // bounds as written: 1000000, not 1e+06
     why << option_ << ": '" << v << "' is not " << (integer ? "an integer" : "a number") << " in [" << lo << ", " << hi
         << "]";
     fail(why.str());
@@ -115,7 +117,7 @@ bool ArgReader::take_u64_list(std::vector<uint64_t>& out) {
   return true;
 }
 
-void ArgReader::unknown() { fail("unknown option '" + option_ + "' (see --help)"); }
+void ArgReader::unknown() { fail("unknown option '" + option_ + "'"); }
 
 void ArgReader::fail(const std::string& why) {
   if (error_.empty()) error_ = why;

@@ -6,7 +6,7 @@
 namespace kestrel::scan_matching {
 
 Status CorrelativeSearch::setup(const ScanPoints& pts, const Pose2& centre, const LikelihoodMap& map,
-                                int half_cells, int half_steps, float step_rad, int slice_half) {
+                                int half_cells, int half_steps, float step_rad, int slice_half, float max_range_m) {
   if (half_cells < 0 || half_cells > kMaxWindowCells || half_steps < 0 || half_steps > kMaxThetaSteps ||
       !(step_rad >= 0) || !centre.finite() || slice_half < 0 || slice_half > kMaxExhaustiveWindow) {
     return Status::kInvalidArgument;
@@ -15,10 +15,14 @@ Status CorrelativeSearch::setup(const ScanPoints& pts, const Pose2& centre, cons
   const float cx = (centre.x - map.origin_x_m()) * inv, cy = (centre.y - map.origin_y_m()) * inv;
   // The centre in Q8 cells must fit int32.
   if (!(std::fabs(cx) < 4.0e6f) || !(std::fabs(cy) < 4.0e6f)) return Status::kInvalidArgument;
-  // Points as int16 in 1/2^F cell, F as fine as the farthest point allows (Q3 for 29 m at
-  // 7.5 mm cells, Q5 for the URG-04LX's 4 m).
-  float reach = 0;
-  for (uint16_t i = 0; i < pts.count; ++i) reach = std::max({reach, std::fabs(pts.x[i]), std::fabs(pts.y[i])});
+  // Points as int16 in 1/2^F cell, F as fine as the sensor's range allows (Q3 for 29 m at
+  // 7.5 mm cells, Q5 for the URG-04LX's 4 m). From the range, not the scan's farthest point:
+  // the precision, and so the answer, must not change from scan to scan with what is in view.
+  float reach = max_range_m > 0 ? max_range_m : 0.0f;
+  for (uint16_t i = 0; i < pts.count; ++i) {
+    if (!std::isfinite(pts.x[i]) || !std::isfinite(pts.y[i])) return Status::kInvalidArgument;
+    reach = std::max({reach, std::fabs(pts.x[i]), std::fabs(pts.y[i])});
+  }
   reach *= inv;
   if (!(reach < 32000.0f)) return Status::kInvalidArgument;  // beyond int16 cells even at F = 0
   int f = 8;
@@ -59,7 +63,7 @@ Pose2 CorrelativeSearch::pose_of(float k, float tx, float ty) const {
 }
 
 // The scan is transformed once per rotation: every translation is an integer cell offset.
-// The transform is fixed point (rotate_points.hpp: 16-bit points and Q14 cos and sin, 32-bit
+// The transform is fixed point (rotate_points.hpp: 16-bit points and Q15 cos and sin, 32-bit
 // products, floor by arithmetic shift): the Verdex has no FPU, so the per-point work is
 // integer, and SIMD targets do four points per instruction.
 // Only the points that stay inside the map under every translation the search and its
@@ -211,13 +215,16 @@ int32_t CorrelativeSearch::score(int k, int tx, int ty) {
   return bound(0, tx, ty);
 }
 
+// Over all the scan's points, not only those the search scores: new territory near the map's
+// edge must lower the overlap, or the map would not take a key scan there in time.
 void CorrelativeSearch::overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit) {
   rotate(k);
+  rotate_points(pxy_.data(), n_, rot_, all_x_.data(), all_y_.data());
   inside = fit = 0;
   const unsigned d = static_cast<unsigned>(map_->dim());
   const uint8_t* cells = map_->cells();
-  for (uint16_t i = 0; i < nq_; ++i) {
-    const unsigned x = static_cast<unsigned>(qx_[i] + tx), y = static_cast<unsigned>(qy_[i] + ty);
+  for (uint16_t i = 0; i < n_; ++i) {
+    const unsigned x = static_cast<unsigned>(all_x_[i] + tx), y = static_cast<unsigned>(all_y_[i] + ty);
     if (x >= d || y >= d) continue;  // the map cannot judge
     ++inside;
     fit += cells[y * d + x] >= threshold;

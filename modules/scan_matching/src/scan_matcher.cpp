@@ -20,6 +20,8 @@ Status ScanMatcher::configure(const Params& p, const Pose2& initial) {
   if (!(p.angle_step_rad > 0) || !(p.max_range_m > p.min_range_m) || !initial.finite()) {
     return Status::kInvalidArgument;
   }
+  // The search holds points as int16 cells (CorrelativeSearch::setup).
+  if (!(p.resolution_m > 0) || !(p.max_range_m / p.resolution_m < 32000.0f)) return Status::kInvalidArgument;
   const Status s = local_.configure(p);
   if (!ok(s)) return s;
   params_ = p;
@@ -173,7 +175,9 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   const auto search_around = [&](int hx, int hy, int hk, int cells, int steps) {
     const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
                   wrap_angle(pred.theta + static_cast<float>(hk) * params_.angle_step_rad)};
-    (void)search_.setup(key_.points, c, *map, cells, steps, params_.angle_step_rad);
+    if (!ok(search_.setup(key_.points, c, *map, cells, steps, params_.angle_step_rad, 0, params_.max_range_m))) {
+      return GridPose{};  // score -1: no seed
+    }
     const GridPose local = params_.multi_resolution ? search_.branch_and_bound() : search_.exhaustive();
     return GridPose{local.k + hk, local.tx + hx, local.ty + hy, local.score};
   };
@@ -198,7 +202,14 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   // The covariance's slices reach cov_half_window cells beyond the optimum (and the rotation
   // curve's two): the search scores the points that stay inside the map over all of it.
   const int slice_half = std::clamp<int>(params_.cov_half_window, 2, kMaxExhaustiveWindow);
-  (void)search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad, slice_half);
+  if (!ok(search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad, slice_half,
+                        params_.max_range_m))) {
+    // Only a prediction thousands of kilometres from the map gets here (configure() has
+    // checked the rest): nothing to match against.
+    local_.release();
+    m.flags |= kRejected | kBadGeometry;
+    return out;
+  }
   GridPose best = params_.multi_resolution ? search_.branch_and_bound(seeds.data(), seed_count) : search_.exhaustive();
   // The prior: the box's optimum stands unless the window's is clearly better. Its score is
   // taken again on the window's grid, so the pose and score agree with the covariance below.
@@ -212,10 +223,13 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   out.grid = best;
   // The mean cell under the points the map can judge; a scan that reaches past the map is
   // not worse for it.
-  const float denom = static_cast<float>(std::max(1, search_.scored_points(best.k))) * kCellMax;
+  // A few points on a pillar can fit perfectly: with fewer scored points than a scan needs
+  // (min_points), the match is lost whatever its mean.
+  const int scored = search_.scored_points(best.k);
+  const float denom = static_cast<float>(std::max(1, scored)) * kCellMax;
   out.score = static_cast<float>(std::max(0, best.score)) / denom;
 
-  if (out.score < params_.min_score) {
+  if (out.score < params_.min_score || scored < std::max<int>(params_.min_points, 2)) {
     local_.release();
     m.pose = pred;
     m.flags |= kLost;
@@ -244,7 +258,10 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   const int r = std::min<int>(params_.cov_theta_steps, 64);
   const int k0 = std::max(-half_steps, best.k - r), k1 = std::min(half_steps, best.k + r);
   const int32_t end0 = best_near(k0), end1 = best_near(k1);
-  const int32_t curve_floor = k0 == best.k ? end1 : (k1 == best.k ? end0 : std::min(end0, end1));
+  // Never above the peak (the motion prior's pose, or a neighbourhood reaching past the
+  // window, can leave an end higher): the estimator uses the same clamp.
+  const int32_t curve_floor =
+      std::min(best.score, k0 == best.k ? end1 : (k1 == best.k ? end0 : std::min(end0, end1)));
   const double half_height = curve_floor + 0.5 * (best.score - curve_floor);
   int left = best.k, right = best.k;
   curve_[static_cast<std::size_t>(best.k - k0)] = best.score;

@@ -33,7 +33,8 @@ class ArgReader {
   const std::string& option() const { return option_; }
   bool is(const char* name) const { return option_ == name; }
 
-  // The option's value, the argument after it; false (and an error) when there is none.
+  // The option's value, the argument after it; false (and an error) when there is none or
+  // it is the next option ("--...").
   bool take(std::string& out);
   // The value converted, within [lo, hi]; false with an error naming the option otherwise.
   bool take_double(double& out, double lo, double hi);

@@ -51,10 +51,12 @@ class CorrelativeSearch {
   // Each rotation scores only the points that stay inside the map for every translation
   // within +-(half_cells + slice_half): slices reaching up to slice_half cells beyond the
   // window (the covariance's) are judged on the same points as the search.
-  // Returns kInvalidArgument when the window exceeds the static capacities, or a point is
-  // more than 32,000 cells from the sensor (int16 cells; 240 m at 7.5 mm).
+  // Returns kInvalidArgument when the window exceeds the static capacities, a point is not
+  // finite, or it (or max_range_m) is more than 32,000 cells from the sensor (int16 cells;
+  // 240 m at 7.5 mm).
+  // max_range_m (optional) fixes the points' precision for every scan of that sensor.
   Status setup(const ScanPoints& pts, const Pose2& centre, const LikelihoodMap& map,
-               int half_cells, int half_steps, float step_rad, int slice_half = 0);
+               int half_cells, int half_steps, float step_rad, int slice_half = 0, float max_range_m = 0);
 
   GridPose exhaustive();
   // Seeds are poses of this window (e.g. the optima of small searches around each motion
@@ -82,8 +84,9 @@ class CorrelativeSearch {
     child_bounds(level, tx, ty, b);
     return b;
   }
-  // Of the points that fall inside the map at pose (k, tx, ty), how many (`fit`) land on
-  // cells of at least `threshold`: whether the scan is already in the map.
+  // Of all the scan's points that fall inside the map at pose (k, tx, ty) (scored or not),
+  // how many (`fit`) land on cells of at least `threshold`: whether the scan is already in
+  // the map.
   void overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit);
   Pose2 pose_of(float k, float tx, float ty) const;
   int half_cells() const { return half_cells_; }
@@ -119,6 +122,7 @@ class CorrelativeSearch {
   std::array<int16_t, 2 * kMaxPoints> pxy_{};  // points (x, y) in 1/2^point_bits_ cells, sensor frame
   std::array<int32_t, kMaxPoints> qx_{}, qy_{};  // fine cell of each point at the current rotation
   std::array<int32_t, kMaxPoints> offsets_{};   // image addition: window corner of each point
+  std::array<int32_t, kMaxPoints> all_x_{}, all_y_{};  // overlap(): every point, not only the scored
   std::array<uint16_t, kMaxPoints> clipped_{};  // image addition: points whose window crosses the map's edge
   uint16_t n_ = 0;   // points of the scan
   uint16_t nq_ = 0;  // of them, those the current rotation keeps (qx_, qy_)
