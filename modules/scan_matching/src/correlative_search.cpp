@@ -215,16 +215,17 @@ int32_t CorrelativeSearch::score(int k, int tx, int ty) {
   return bound(0, tx, ty);
 }
 
-// Over all the scan's points, not only those the search scores: new territory near the map's
-// edge must lower the overlap, or the map would not take a key scan there in time.
+// Over the points the search scores, like the score: new territory in the band at the map's
+// edge is judged once the vehicle's motion brings it inside (0.4 m on the vehicle). Counting
+// every point inside the map instead was tried: the 1 m/s hallway drift was 0.22 / 0.29 /
+// 0.26 m on seeds 1-3 against 0.17 / 0.23 / 0.20 m.
 void CorrelativeSearch::overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit) {
   rotate(k);
-  rotate_points(pxy_.data(), n_, rot_, all_x_.data(), all_y_.data());
   inside = fit = 0;
   const unsigned d = static_cast<unsigned>(map_->dim());
   const uint8_t* cells = map_->cells();
-  for (uint16_t i = 0; i < n_; ++i) {
-    const unsigned x = static_cast<unsigned>(all_x_[i] + tx), y = static_cast<unsigned>(all_y_[i] + ty);
+  for (uint16_t i = 0; i < nq_; ++i) {
+    const unsigned x = static_cast<unsigned>(qx_[i] + tx), y = static_cast<unsigned>(qy_[i] + ty);
     if (x >= d || y >= d) continue;  // the map cannot judge
     ++inside;
     fit += cells[y * d + x] >= threshold;

@@ -84,7 +84,7 @@ class CorrelativeSearch {
     child_bounds(level, tx, ty, b);
     return b;
   }
-  // Of all the scan's points that fall inside the map at pose (k, tx, ty) (scored or not),
+  // Of the points rotation k scores (see setup()) that fall inside the map at (k, tx, ty),
   // how many (`fit`) land on cells of at least `threshold`: whether the scan is already in
   // the map.
   void overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit);
@@ -122,7 +122,6 @@ class CorrelativeSearch {
   std::array<int16_t, 2 * kMaxPoints> pxy_{};  // points (x, y) in 1/2^point_bits_ cells, sensor frame
   std::array<int32_t, kMaxPoints> qx_{}, qy_{};  // fine cell of each point at the current rotation
   std::array<int32_t, kMaxPoints> offsets_{};   // image addition: window corner of each point
-  std::array<int32_t, kMaxPoints> all_x_{}, all_y_{};  // overlap(): every point, not only the scored
   std::array<uint16_t, kMaxPoints> clipped_{};  // image addition: points whose window crosses the map's edge
   uint16_t n_ = 0;   // points of the scan
   uint16_t nq_ = 0;  // of them, those the current rotation keeps (qx_, qy_)
