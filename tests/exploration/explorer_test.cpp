@@ -56,6 +56,7 @@ TEST(BlendExplorer, CommandIsWallFollowingPlusFrontierVelocityTowardsTheWaypoint
   p.guidance.speed_limit_mps = 100.0f;  // out of the way: check equations 1 and 5 exactly
   p.guidance.yaw_rate_limit_radps = 100.0f;
   p.srt.arrival_work_per_cycle = 0;  // the first waypoint in the first step
+  p.approach.enabled = false;        // paper 002's blend alone (the limiter has its own tests)
   const SegmentWorld w = hall();
   LaserScan scan = w.scan(kUrg, 0, 0, 0.2);
   ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
@@ -84,6 +85,7 @@ TEST(BlendExplorer, SpeedLimitCapsTheSum) {
   Params p;
   p.guidance.gain_fr = 50.0f;  // a far waypoint would command tens of m/s
   p.srt.arrival_work_per_cycle = 0;  // the first waypoint in the first step
+  p.approach.enabled = false;        // the section V limit alone
   const SegmentWorld w = hall();
   const LaserScan scan = w.scan(kUrg, 0, 0, 0);
   ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);

@@ -146,6 +146,12 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       out.stack.mission.explore_time_limit_s = static_cast<float>(d);
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
+    } else if (key == "approach" && kind == mission::MissionKind::kExplore) {
+      if (value != "on" && value != "off") return "approach: expected on or off, got '" + value + "'";
+      out.stack.explorer.approach.enabled = value == "on";
+    } else if (key == "approach_blind_mps" && kind == mission::MissionKind::kExplore) {
+      if (!parse_double(value, d) || d < 0 || d > 10) return "approach_blind_mps: '" + value + "' is not a speed in [0, 10] m/s";
+      out.stack.explorer.approach.blind_speed_mps = static_cast<float>(d);
     } else if (key == "delay_s") {
       if (!parse_double(value, d) || d < 0 || d > 2) return "delay_s: '" + value + "' is not a delay in [0, 2] s";
       out.delay_s = d;

@@ -28,6 +28,7 @@ Status ExplorerBase::configure(const Params& params, const BeamGeometry& geometr
   configured_ = false;
   if (params.validate() != Status::kOk) return Status::kInvalidArgument;
   if (field_.configure(geometry, params.wall) != Status::kOk) return Status::kInvalidArgument;
+  if (approach_.configure(params.approach, geometry) != Status::kOk) return Status::kInvalidArgument;
   params_ = params;
   if (configure_strategy() != Status::kOk) return Status::kInvalidArgument;
   configured_ = true;
@@ -100,7 +101,8 @@ Status ExplorerBase::step(const NavState& nav, const LaserScan& scan, GuidanceSe
   }
   out.position_m.z() = params_.guidance.altitude_m;
   if (out.mode == GuidanceSetpoint::Mode::kVelocity) {
-    const Eigen::Vector2f v = limit_speed(out.velocity_mps.head<2>(), params_.guidance.speed_limit_mps);
+    Eigen::Vector2f v = limit_speed(out.velocity_mps.head<2>(), params_.guidance.speed_limit_mps);
+    if (approach_.enabled()) v = limit_approach(scan, pose.theta, v);
     out.velocity_mps = {v.x(), v.y(), 0.0f};
   }
   status_.heading_target_rad = heading_target;
@@ -108,6 +110,16 @@ Status ExplorerBase::step(const NavState& nav, const LaserScan& scan, GuidanceSe
   status_.last = Status::kOk;
   ++status_.steps;
   return Status::kOk;
+}
+
+Eigen::Vector2f ExplorerBase::limit_approach(const LaserScan& scan, float heading_rad, const Eigen::Vector2f& v) {
+  // The returns are in the body frame: the command goes there and back (equation 4 and its
+  // inverse), so the limit holds whatever the estimate's position error.
+  const float c = std::cos(heading_rad), s = std::sin(heading_rad);
+  Eigen::Vector2f body{c * v.x() + s * v.y(), -s * v.x() + c * v.y()};
+  status_.approach = approach_.limit(scan, field_.directions(), body);
+  if (status_.approach.stopped) ++status_.approach_stops;
+  return WallFollowField::to_inertial(body, heading_rad);
 }
 
 Eigen::Vector2f ExplorerBase::wall_following_velocity(const LaserScan& scan, float heading_rad) {

@@ -33,7 +33,15 @@ Status Params::validate() const {
                            positive(guidance.speed_limit_mps) && positive(guidance.yaw_rate_limit_radps) &&
                            positive(guidance.waypoint_time_limit_s) && std::isfinite(guidance.altitude_m) &&
                            non_negative(guidance.cruise_speed_mps) && non_negative(guidance.wall_hold_gain);
-  return wall_ok && srt_ok && keep_out_ok && guidance_ok ? Status::kOk : Status::kInvalidArgument;
+  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach.validate() == Status::kOk
+             ? Status::kOk
+             : Status::kInvalidArgument;
+}
+
+Status ApproachParams::validate() const {
+  const bool ok = positive(stop_distance_m) && stop_distance_m <= 2.0f && positive(gain) && gain <= 10.0f &&
+                  non_negative(blind_speed_mps) && blind_speed_mps <= 10.0f;
+  return ok ? Status::kOk : Status::kInvalidArgument;
 }
 
 Status BeamGeometry::validate() const {

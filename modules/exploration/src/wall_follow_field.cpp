@@ -13,12 +13,7 @@ Status WallFollowField::configure(const BeamGeometry& geometry, const WallFollow
   if (check.validate() != Status::kOk) return Status::kInvalidArgument;
 
   geometry_ = geometry;
-  for (std::size_t i = 0; i < geometry.beam_count; ++i) {
-    const double a = static_cast<double>(geometry.first_angle_rad) +
-                     static_cast<double>(geometry.angle_step_rad) * static_cast<double>(i);
-    cos_[i] = Trig::from_double(std::cos(a));
-    sin_[i] = Trig::from_double(std::sin(a));
-  }
+  directions_.build(geometry);
   target_mm_ = static_cast<int32_t>(std::lround(params.target_range_m * 1000.0f));
   safe_mm_ = static_cast<uint16_t>(std::lround(params.safe_range_m * 1000.0f));
   const long max_mm = std::min<long>(std::lround(params.max_range_m * 1000.0f), geometry.max_range_mm);
@@ -45,6 +40,8 @@ Status WallFollowField::body_velocity(const LaserScan& scan, FieldResult& out) c
   std::size_t nearest = 0xFFFFu;
   const uint16_t* r = scan.range_mm.data();
   const std::size_t count = geometry_.beam_count;
+  const Trig* cos_i = directions_.cos.data();
+  const Trig* sin_i = directions_.sin.data();
   for (std::size_t i = 0; i < count; ++i) {
     const uint16_t ri = r[i];
     if (ri < kMinValidRangeMm || ri > max_mm_) continue;  // range codes and far beams
@@ -53,8 +50,8 @@ Status WallFollowField::body_velocity(const LaserScan& scan, FieldResult& out) c
       nearest = i;
     }
     const int32_t d = static_cast<int32_t>(ri) - target_mm_;  // |d| < 2^16, |trig| <= 2^14
-    const int32_t px = d * cos_[i].raw();
-    const int32_t py = d * sin_[i].raw();
+    const int32_t px = d * cos_i[i].raw();
+    const int32_t py = d * sin_i[i].raw();
     if (ri < safe_mm_) {
       safe_x += px;
       safe_y += py;

@@ -15,6 +15,7 @@
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/se2.hpp"
 #include "kestrel/core/status.hpp"
+#include "kestrel/exploration/approach_limiter.hpp"
 #include "kestrel/exploration/beam_geometry.hpp"
 #include "kestrel/exploration/params.hpp"
 #include "kestrel/exploration/srt_star_planner.hpp"
@@ -38,6 +39,8 @@ struct ExplorerStatus {
   Eigen::Vector2f v_wf = Eigen::Vector2f::Zero();  // world frame, m/s, before the speed limit
   Eigen::Vector2f v_fr = Eigen::Vector2f::Zero();  // world frame, m/s (blend)
   float heading_target_rad = 0;                    // before the yaw-rate limit
+  ApproachResult approach;                         // the approach limiter on the last command
+  uint32_t approach_stops = 0;                     // commands the limiter zeroed, since reset
 };
 
 class Explorer {

@@ -1,6 +1,7 @@
 #pragma once
 // What the three explorers share: input checks with a defined hold for every bad input, the
-// wall-following field, the yaw-rate and speed limits of paper 002 section V, and the status.
+// wall-following field, the yaw-rate and speed limits of paper 002 section V, the approach
+// limiter on every velocity command, and the status.
 // A derived explorer only writes its strategy in plan().
 #include "kestrel/core/time.hpp"
 #include "kestrel/exploration/explorer.hpp"
@@ -35,7 +36,10 @@ class ExplorerBase : public Explorer {
 
  private:
   void hold(const NavState& nav, TimeUs now, GuidanceSetpoint& out) const;
+  // The approach limiter on a world-frame command, recorded in the status.
+  Eigen::Vector2f limit_approach(const LaserScan& scan, float heading_rad, const Eigen::Vector2f& v);
 
+  ApproachLimiter approach_;
   YawRateLimiter yaw_;
   Point2 last_position_{};
   bool have_position_ = false;

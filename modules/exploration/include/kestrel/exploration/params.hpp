@@ -86,10 +86,28 @@ struct GuidanceParams {
                                         // return to r_t (the field alone centres in a room)
 };
 
+// The approach limiter (approach_limiter.hpp): the velocity-commanding explorers (blend,
+// wallfollow) never close on a laser return faster than gain * (range - stop_distance_m).
+// Not part of paper 002, whose blend keeps off walls only on balance; off reproduces the paper.
+struct ApproachParams {
+  bool enabled = true;
+  float stop_distance_m = 0.4f;  // vehicle radius 0.27 m + 0.13 m for the controller's lag; the
+                                 // SRT clearance, so every waypoint stays reachable; 0.95 m gaps
+                                 // (gt-building's inner room) leave 7.5 cm either side
+  float gain = 1.0f;             // 1/s: 0.5 m/s is allowed from 0.9 m, 0.25 m/s at r_safe
+  float blind_speed_mps = 0.1f;  // closing speed allowed towards any direction the laser does not
+                                 // see (the arc behind it): a creep while the heading turns
+
+  // kInvalidArgument unless 0 < stop_distance_m <= 2, 0 < gain <= 10 and
+  // 0 <= blind_speed_mps <= 10 (finite).
+  Status validate() const;
+};
+
 struct Params {
   WallFollowParams wall;
   SrtParams srt;
   GuidanceParams guidance;
+  ApproachParams approach;
 
   // kInvalidArgument when a value is outside its domain (non-finite, negative, r_safe >= r_t,
   // more sectors than kMaxSectors, ...).

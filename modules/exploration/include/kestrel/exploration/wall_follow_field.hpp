@@ -17,9 +17,9 @@
 #include <array>
 #include <cstdint>
 
-#include "kestrel/core/fixed_point.hpp"
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/status.hpp"
+#include "kestrel/exploration/beam_directions.hpp"
 #include "kestrel/exploration/beam_geometry.hpp"
 #include "kestrel/exploration/params.hpp"
 
@@ -35,13 +35,15 @@ struct FieldResult {
 
 class WallFollowField {
  public:
-  static constexpr int kTrigFracBits = 14;
-  using Trig = Fixed<kTrigFracBits>;
+  static constexpr int kTrigFracBits = BeamDirections::kFracBits;
+  using Trig = BeamDirections::Trig;
 
   // Builds the per-beam tables; kInvalidArgument for a bad geometry or parameters.
   Status configure(const BeamGeometry& geometry, const WallFollowParams& params);
   bool configured() const { return configured_; }
   const BeamGeometry& geometry() const { return geometry_; }
+  // The beams' directions, valid once configured (shared with the approach limiter).
+  const BeamDirections& directions() const { return directions_; }
 
   // Equations 2 and 3 on one scan, body frame. kNotFound if unconfigured, kInvalidArgument if
   // the scan's geometry differs from the configured one (result zero in both cases). A scan
@@ -52,8 +54,7 @@ class WallFollowField {
   static Eigen::Vector2f to_inertial(const Eigen::Vector2f& body, float heading_rad);
 
  private:
-  std::array<Trig, kMaxBeams> cos_{};
-  std::array<Trig, kMaxBeams> sin_{};
+  BeamDirections directions_;
   BeamGeometry geometry_{};
   int32_t target_mm_ = 0;
   uint16_t safe_mm_ = 0;
