@@ -297,6 +297,48 @@ void never_allocates(Explorer* ex) {
   }
 }
 
+// The flight home borrows the explorer's approach limiter (AutonomyStack, Phase::kReturn).
+void bounds_a_velocity_setpoint_from_elsewhere(Explorer* ex) {
+  SegmentWorld w;
+  w.add_box(-5, -5, 0.8, 5);  // a wall 0.8 m ahead of the vehicle at the origin, heading 0
+  const LaserScan scan = w.scan(kUrg, 0, 0, 0);
+  GuidanceSetpoint sp;
+  sp.mode = GuidanceSetpoint::Mode::kVelocity;
+  sp.velocity_mps = {0.6f, 0.0f, 0.0f};
+  // Unconfigured: nothing can be trusted, the horizontal velocity is zeroed.
+  EXPECT_EQ(ex->bound_velocity(nav_at(0, 0, 0), scan, sp), Status::kInvalidArgument);
+  EXPECT_FLOAT_EQ(sp.velocity_mps.head<2>().norm(), 0.0f);
+  ASSERT_EQ(ex->configure(Params{}, BeamGeometry::of(scan)), Status::kOk);
+  sp.velocity_mps = {0.6f, 0.0f, 0.0f};
+  EXPECT_EQ(ex->bound_velocity(nav_at(0, 0, 0), scan, sp), Status::kOk);
+  EXPECT_NEAR(sp.velocity_mps.x(), 0.4f, 0.01f);  // gain * (0.8 - 0.4)
+  // The same command with the vehicle turned round: the wall is behind, in the blind arc.
+  const LaserScan turned = w.scan(kUrg, 0, 0, M_PI);
+  sp.velocity_mps = {0.6f, 0.0f, 0.0f};
+  EXPECT_EQ(ex->bound_velocity(nav_at(0, 0, static_cast<float>(M_PI)), turned, sp), Status::kOk);
+  EXPECT_NEAR(sp.velocity_mps.x(), Params{}.approach.blind_speed_mps, 0.02f);
+  // A position set-point is the controller's to fly: left as it is.
+  GuidanceSetpoint pos;
+  pos.mode = GuidanceSetpoint::Mode::kPosition;
+  pos.velocity_mps = {0.6f, 0.0f, 0.0f};
+  EXPECT_EQ(ex->bound_velocity(nav_at(0, 0, 0), scan, pos), Status::kOk);
+  EXPECT_FLOAT_EQ(pos.velocity_mps.x(), 0.6f);
+  // A scan of another laser, or a non-finite heading: zeroed.
+  const LaserScan other = w.scan(LaserModel::utm30lx(), 0, 0, 0);
+  EXPECT_EQ(ex->bound_velocity(nav_at(0, 0, 0), other, sp), Status::kInvalidArgument);
+  EXPECT_FLOAT_EQ(sp.velocity_mps.head<2>().norm(), 0.0f);
+  sp.velocity_mps = {0.6f, 0.0f, 0.0f};
+  EXPECT_EQ(ex->bound_velocity(nav_at(0, 0, NAN), scan, sp), Status::kInvalidArgument);
+  EXPECT_FLOAT_EQ(sp.velocity_mps.head<2>().norm(), 0.0f);
+}
+
+TEST(BlendExplorer, BoundsAVelocitySetpointFromElsewhere) {
+  bounds_a_velocity_setpoint_from_elsewhere(std::make_unique<BlendExplorer>().get());
+}
+TEST(SrtExplorer, BoundsAVelocitySetpointFromElsewhere) {
+  bounds_a_velocity_setpoint_from_elsewhere(std::make_unique<SrtExplorer>().get());
+}
+
 TEST(BlendExplorer, HoldsOnBadInput) {
   holds_on_bad_input(std::make_unique<BlendExplorer>().get());
 }

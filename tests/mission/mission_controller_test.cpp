@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "kestrel/core/alloc_guard.hpp"
+#include "kestrel/core/angle.hpp"
 
 namespace kestrel::mission {
 namespace {
@@ -134,18 +135,66 @@ TEST(MissionController, ExploreThenReturnsAlongTheTrailAndLandsAtHome) {
   EXPECT_EQ(r.mc.phase(), Phase::kReturn);
   // On the way home it must pass the corner of the L, never cut across it.
   bool passed_corner = false;
+  float heading = r.v.nav.heading_rad;
+  float heading_on_first_leg = NAN;
   for (int i = 0; i < 4000 && r.mc.phase() == Phase::kReturn; ++i) {
-    const Eigen::Vector3f before = r.v.nav.position_m;
     const GuidanceSetpoint s = r.step(&e);
     if ((r.v.nav.position_m.head<2>() - Eigen::Vector2f(3.0f, 2.0f)).norm() < 0.35f) passed_corner = true;
-    // The carrot stays within one second of travel at the return speed.
-    EXPECT_LE((s.position_m - before).head<2>().norm(), p.return_speed_mps + 1e-4f);
+    // Velocity set-points (the composition bounds them against the scan) at the return speed.
+    if (r.mc.phase() == Phase::kReturn) {
+      EXPECT_EQ(s.mode, GuidanceSetpoint::Mode::kVelocity);
+    }
     EXPECT_LE(s.velocity_mps.norm(), p.return_speed_mps + 1e-4f);
+    // The heading turns towards the way home, never faster than the return yaw rate.
+    EXPECT_LE(std::fabs(angle_diff(s.heading_rad, heading)), p.return_yaw_rate_radps * MissionRun::kDt + 1e-4f);
+    heading = s.heading_rad;
+    if (r.v.nav.position_m.y() > 2.6f && r.v.nav.position_m.y() < 2.9f) heading_on_first_leg = heading;
   }
   EXPECT_TRUE(passed_corner);
+  EXPECT_TRUE(r.mc.returned_home());
+  // Down the L's +y leg towards its corner the heading has turned from 0 (where exploring
+  // ended) towards -y, the way home, without overshooting it.
+  EXPECT_LT(heading_on_first_leg, -0.5f);
+  EXPECT_GT(heading_on_first_leg, -M_PI / 2 - 0.05);
   EXPECT_EQ(r.mc.phase(), Phase::kLand);
   EXPECT_NEAR(r.v.nav.position_m.x(), 1.0f, 0.2f);
   EXPECT_NEAR(r.v.nav.position_m.y(), 2.0f, 0.2f);
+}
+
+TEST(MissionController, BlockedWayHomeLandsWhereItIs) {
+  MissionRun r;
+  MissionParams p;
+  p.return_stall_s = 5.0f;
+  ASSERT_EQ(r.mc.configure(MissionKind::kExplore, p), Status::kOk);
+  ExplorerOutput e;
+  e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
+  ASSERT_TRUE(r.run_until(Phase::kExplore, 10, &e));
+  e.setpoint.velocity_mps = {0.5f, 0, 0};
+  for (int i = 0; i < 160; ++i) r.step(&e);
+  e.finished = true;
+  r.step(&e);
+  ASSERT_EQ(r.mc.phase(), Phase::kReturn);
+  // A wall the trail now runs through (the estimate drifted): the vehicle cannot move.
+  r.v.speed = 0.0f;
+  const Eigen::Vector3f stuck = r.v.nav.position_m;
+  ASSERT_FALSE(r.run_until(Phase::kLand, p.return_stall_s - 0.5f, &e));
+  ASSERT_TRUE(r.run_until(Phase::kLand, 1.0f, &e));
+  // It lands where it is, not at home, and says so.
+  const GuidanceSetpoint s = r.step(&e);
+  EXPECT_NEAR(s.position_m.x(), stuck.x(), 1e-4f);
+  EXPECT_NEAR(s.position_m.y(), stuck.y(), 1e-4f);
+  EXPECT_FALSE(r.mc.returned_home());
+  // Slow progress is still progress: a vehicle creeping home is not landed short.
+  MissionRun slow;
+  ASSERT_EQ(slow.mc.configure(MissionKind::kExplore, p), Status::kOk);
+  e.finished = false;
+  ASSERT_TRUE(slow.run_until(Phase::kExplore, 10, &e));
+  for (int i = 0; i < 400; ++i) slow.step(&e);
+  e.finished = true;
+  slow.step(&e);
+  slow.v.speed = 0.05f;
+  ASSERT_TRUE(slow.run_until(Phase::kLand, 120, &e));
+  EXPECT_TRUE(slow.mc.returned_home());
 }
 
 TEST(MissionController, StaleEstimateTriggersFailsafeLanding) {

@@ -275,6 +275,13 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("map_rebuilds", c.map_rebuilds);
   out.emplace_back("setpoints_sent", c.setpoints_sent);
   out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
+  out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);
+  if (const exploration::Explorer* e = stack_->explorer(); e != nullptr) {
+    out.emplace_back("approach_scaled", e->status().approach_scaled);
+    out.emplace_back("approach_stops", e->status().approach_stops);
+    out.emplace_back("return_setpoints_unbounded", c.guidance_rejected);
+    if (e->planner() != nullptr) out.emplace_back("srt_restarts", e->planner()->restarts());
+  }
   const Scheduler& s = stack_->scheduler();
   for (std::size_t i = 0; i < s.task_count(); ++i) {
     const std::string prefix = std::string("tasks.") + s.spec(i).name + ".";

@@ -166,6 +166,11 @@ void AutonomyStack::guidance_task(TimeUs now) {
     ++counters_.guidance_steps;
   }
   setpoint_ = mission_.step(now, nav_, explorer_ != nullptr ? &explorer_out_ : nullptr);
+  // On the way home the trail is in the estimate's frame, which may have drifted since it was
+  // drawn: the explorer's approach limiter bounds the flight against the newest scan.
+  if (explorer_ != nullptr && mission_.phase() == mission::Phase::kReturn && guidance_scan_.beam_count > 0 &&
+      explorer_->bound_velocity(nav_, guidance_scan_, setpoint_) != Status::kOk)
+    ++counters_.guidance_rejected;
 }
 
 void AutonomyStack::control_task(TimeUs now) {

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "kestrel/core/messages.hpp"
+#include "kestrel/exploration/approach_limiter.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
 #include "kestrel/exploration/srt_star_planner.hpp"
 
@@ -61,6 +62,26 @@ void guidance_step(benchmark::State& state, uint16_t beams, double fov_deg) {
     benchmark::DoNotOptimize(out);
   }
   state.SetItemsProcessed(state.iterations() * beams);
+}
+
+// The approach limiter's worst case: 0.45 m from two walls of a corner, the command at full
+// speed into it, so every return near the corner is within reach and several cuts are made.
+void approach_limit_corner(benchmark::State& state, uint16_t beams, double fov_deg) {
+  const LaserScan scan = room_scan(beams, fov_deg, 5.55, 3.55, 0.6, 6.0, 4.0);
+  auto directions = std::make_unique<BeamDirections>();
+  directions->build(BeamGeometry::of(scan));
+  ApproachLimiter limiter;
+  if (limiter.configure(ApproachParams{}, BeamGeometry::of(scan)) != Status::kOk) {
+    state.SkipWithError("configure failed");
+    return;
+  }
+  uint32_t cuts = 0;
+  for (auto _ : state) {
+    Eigen::Vector2f v{0.45f, 0.2f};
+    cuts = limiter.limit(scan, *directions, v).cuts;
+    benchmark::DoNotOptimize(v);
+  }
+  state.counters["cuts"] = cuts;
 }
 
 // The whole arrival step in one call (srt.arrival_work_per_cycle = 0), as before it was sliced.
@@ -135,6 +156,12 @@ void BM_GuidanceStepUrg(benchmark::State& s) {
 void BM_GuidanceStepUtm(benchmark::State& s) {
   guidance_step(s, 1081, 270.0);
 }
+void BM_ApproachCornerUrg(benchmark::State& s) {
+  approach_limit_corner(s, 682, 240.0);
+}
+void BM_ApproachCornerUtm(benchmark::State& s) {
+  approach_limit_corner(s, 1081, 270.0);
+}
 void BM_SrtArrivalUrg(benchmark::State& s) {
   srt_arrival(s, 682, 240.0);
 }
@@ -161,6 +188,8 @@ void BM_SectorScanTablesUrg(benchmark::State& s) {
 }
 BENCHMARK(BM_GuidanceStepUrg)->Name("exploration/guidance_step/urg04lx_682");
 BENCHMARK(BM_GuidanceStepUtm)->Name("exploration/guidance_step/utm30lx_1081");
+BENCHMARK(BM_ApproachCornerUrg)->Name("exploration/approach_limit_corner/urg04lx_682");
+BENCHMARK(BM_ApproachCornerUtm)->Name("exploration/approach_limit_corner/utm30lx_1081");
 BENCHMARK(BM_SrtArrivalUrg)->Name("exploration/srt_arrival/urg04lx_682");
 BENCHMARK(BM_SrtArrivalUtm)->Name("exploration/srt_arrival/utm30lx_1081");
 BENCHMARK(BM_SectorScanUrg)->Name("exploration/sector_scan/urg04lx_682");

@@ -89,11 +89,11 @@ ApproachResult ApproachLimiter::limit(const LaserScan& scan, const BeamDirection
     }
     if (!broken) break;
     if (out.cuts == kMaxCuts) {
-      // The bounds did not settle (a passage narrower than twice the stop distance, whose
-      // push-outs disagree, or an acute corner): zero breaks no bound beyond stop_distance.
-      vx = 0;
-      vy = 0;
-      out.stopped = true;
+      // Not settled: a wall's returns bound the command along a curve, and cuts on its tangents
+      // close in on it slowly. What is left is scaled away, which the command's direction
+      // survives: a scaled command closes on each return in proportion, so the largest factor
+      // that keeps every bound is the smallest bound / closing.
+      scale_to_bounds(scan, directions, vx, vy, out);
       break;
     }
     vx -= (worst * worst_c + kRound) >> kQ;
@@ -103,6 +103,30 @@ ApproachResult ApproachLimiter::limit(const LaserScan& scan, const BeamDirection
   v = {static_cast<float>(vx) * 1e-3f, static_cast<float>(vy) * 1e-3f};
   out.removed_mps = (in - v).norm();
   return out;
+}
+
+void ApproachLimiter::scale_to_bounds(const LaserScan& scan, const BeamDirections& directions, int64_t& vx,
+                                      int64_t& vy, ApproachResult& out) const {
+  constexpr int64_t kOne = int64_t{1} << 16;
+  int64_t factor = kOne;  // Q16
+  const std::size_t n = std::min<std::size_t>(scan.beam_count, kMaxBeams);
+  auto fit = [&](int64_t closing, int64_t bound) {
+    if (closing <= bound) return;
+    // Inside stop_distance (bound <= 0) no factor helps: the command stops.
+    factor = bound <= 0 ? 0 : std::min(factor, (bound * kOne) / closing);
+  };
+  for (std::size_t i = 0; i < n && factor > 0; ++i) {
+    const int32_t ri = scan.range_mm[i];
+    if (ri < kMinValidRangeMm || ri > max_mm_) continue;
+    fit((vx * directions.cos[i].raw() + vy * directions.sin[i].raw() + kRound) >> kQ,
+        (int64_t{gain_q8_} * (ri - stop_mm_)) >> 8);
+  }
+  for (std::size_t k = 0; k < blind_count_ && factor > 0; ++k)
+    fit((vx * blind_cos_[k].raw() + vy * blind_sin_[k].raw() + kRound) >> kQ, blind_bound_mmps_);
+  vx = (vx * factor) / kOne;
+  vy = (vy * factor) / kOne;
+  out.scaled = true;
+  out.stopped = factor == 0;
 }
 
 }  // namespace kestrel::exploration

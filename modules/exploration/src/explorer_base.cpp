@@ -112,12 +112,27 @@ Status ExplorerBase::step(const NavState& nav, const LaserScan& scan, GuidanceSe
   return Status::kOk;
 }
 
+Status ExplorerBase::bound_velocity(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& setpoint) {
+  if (setpoint.mode != GuidanceSetpoint::Mode::kVelocity) return Status::kOk;
+  if (!configured_ || !field_.geometry().matches(scan) || !std::isfinite(nav.heading_rad)) {
+    setpoint.velocity_mps.x() = 0.0f;
+    setpoint.velocity_mps.y() = 0.0f;
+    return Status::kInvalidArgument;
+  }
+  if (!approach_.enabled()) return Status::kOk;
+  const Eigen::Vector2f v = limit_approach(scan, nav.heading_rad, setpoint.velocity_mps.head<2>());
+  setpoint.velocity_mps.x() = v.x();
+  setpoint.velocity_mps.y() = v.y();
+  return Status::kOk;
+}
+
 Eigen::Vector2f ExplorerBase::limit_approach(const LaserScan& scan, float heading_rad, const Eigen::Vector2f& v) {
   // The returns are in the body frame: the command goes there and back (equation 4 and its
   // inverse), so the limit holds whatever the estimate's position error.
   const float c = std::cos(heading_rad), s = std::sin(heading_rad);
   Eigen::Vector2f body{c * v.x() + s * v.y(), -s * v.x() + c * v.y()};
   status_.approach = approach_.limit(scan, field_.directions(), body);
+  if (status_.approach.scaled) ++status_.approach_scaled;
   if (status_.approach.stopped) ++status_.approach_stops;
   return WallFollowField::to_inertial(body, heading_rad);
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kestrel/core/angle.hpp"
+
 namespace kestrel::mission {
 
 const char* to_string(Phase p) {
@@ -31,6 +33,12 @@ const char* to_string(MissionKind k) {
 
 namespace {
 bool positive_finite(float v) { return std::isfinite(v) && v > 0; }
+// Flying home: nearer than this to the carrot its bearing is noise, so the heading holds.
+constexpr float kReturnFacingMinM = 0.1f;
+// Flying home: speed per metre to the carrot when nearer than one second of travel.
+constexpr float kReturnGainPerS = 1.0f;
+// Flying home: coming this much nearer the carrot counts as progress.
+constexpr float kReturnProgressM = 0.1f;
 }  // namespace
 
 Status MissionController::configure(MissionKind kind, const MissionParams& p, const IVector<Waypoint>* waypoints) {
@@ -38,6 +46,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
       !positive_finite(p.descent_rate_mps) || !positive_finite(p.arrive_radius_m) ||
       !positive_finite(p.arrive_speed_mps) || !positive_finite(p.estimate_timeout_s) ||
       !positive_finite(p.return_speed_mps) || !positive_finite(p.breadcrumb_spacing_m) ||
+      !positive_finite(p.return_yaw_rate_radps) || !positive_finite(p.return_stall_s) ||
       !(std::isfinite(p.hover_duration_s) && p.hover_duration_s >= 0) ||
       !(std::isfinite(p.preflight_s) && p.preflight_s >= 0) ||
       !(std::isfinite(p.explore_time_limit_s) && p.explore_time_limit_s >= 0) ||
@@ -57,6 +66,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
   params_ = p;
   trail_ = BreadcrumbTrail(p.breadcrumb_spacing_m);
   phase_ = Phase::kIdle;
+  returned_home_ = false;
   seen_estimate_ = false;
   configured_ = true;
   return Status::kOk;
@@ -164,6 +174,8 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       const bool timed_out = (now - phase_start_).seconds() >= params_.explore_time_limit_s;
       if (explorer == nullptr || explorer->finished || timed_out) {
         return_index_ = trail_.size() == 0 ? 0 : trail_.size() - 1;
+        progress_index_ = return_index_ + 1;  // the first return step counts as progress
+        progress_at_ = now;
         hold_heading_ = nav.heading_rad;
         enter(Phase::kReturn, now);
         return hold(now, nav.position_m, hold_heading_);
@@ -187,18 +199,44 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       if (return_index_ == 0 && arrived(nav, {home_.x(), home_.y(), alt})) {
         hold_point_ = {home_.x(), home_.y(), alt};
         ramp_z_ = alt;
+        returned_home_ = true;
         enter(Phase::kLand, now);
         return hold(now, hold_point_, hold_heading_);
       }
-      const Eigen::Vector3f to_target = target - nav.position_m;
+      // Progress is a breadcrumb passed or the carrot come nearer. Without it for
+      // return_stall_s the way is blocked (the trail, drawn in the estimate's frame, now runs
+      // into a wall the approach limiter will not let the vehicle hit): land where it is
+      // rather than hover until the battery is gone.
+      const float to_carrot = (target - nav.position_m).head<2>().norm();
+      if (return_index_ < progress_index_ || to_carrot < progress_distance_ - kReturnProgressM) {
+        progress_index_ = return_index_;
+        progress_distance_ = to_carrot;
+        progress_at_ = now;
+      } else if ((now - progress_at_).seconds() > params_.return_stall_s) {
+        hold_point_ = {nav.position_m.x(), nav.position_m.y(), alt};
+        ramp_z_ = alt;
+        enter(Phase::kLand, now);
+        return hold(now, hold_point_, hold_heading_);
+      }
+      // Velocity set-points, so that the composition can bound them against the laser's
+      // returns (the trail was drawn in the estimate's frame, which may have drifted since), and
+      // the heading turns towards the way ahead at a bounded rate, so that the laser looks
+      // where the vehicle goes and the scan matcher is not shaken by a fast turn.
+      const Eigen::Vector2f to_target = (target - nav.position_m).head<2>();
       const float dist = to_target.norm();
-      GuidanceSetpoint s = hold(now, target, hold_heading_);
-      if (dist > params_.return_speed_mps) {
-        const Eigen::Vector3f dir = to_target / dist;
-        s.position_m = nav.position_m + dir * params_.return_speed_mps;
-        s.position_m.z() = alt;
-        s.velocity_mps = dir * params_.return_speed_mps;
-        s.velocity_mps.z() = 0;
+      if (dist > kReturnFacingMinM) {
+        const float turn = angle_diff(std::atan2(to_target.y(), to_target.x()), hold_heading_);
+        const float max_turn = params_.return_yaw_rate_radps * dt;
+        hold_heading_ = wrap_angle(hold_heading_ + std::clamp(turn, -max_turn, max_turn));
+      }
+      GuidanceSetpoint s = hold(now, {nav.position_m.x(), nav.position_m.y(), alt}, hold_heading_);
+      s.mode = GuidanceSetpoint::Mode::kVelocity;
+      s.velocity_mps.setZero();
+      if (dist > 1e-3f) {
+        // Full speed until one second from the carrot, then in proportion (home is arrived at,
+        // not overflown).
+        const float speed = std::min(params_.return_speed_mps, dist * kReturnGainPerS);
+        s.velocity_mps.head<2>() = to_target * (speed / dist);
       }
       return s;
     }

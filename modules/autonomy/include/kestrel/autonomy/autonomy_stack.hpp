@@ -51,6 +51,7 @@ struct StackCounters {
   uint32_t imu_errors = 0;
   uint32_t altitude_samples = 0;
   uint32_t guidance_steps = 0;
+  uint32_t guidance_rejected = 0;    // flight-home set-points the approach limiter could not bound (zeroed)
   uint32_t setpoints_sent = 0;
   uint32_t autopilot_errors = 0;
   uint32_t map_rebuilds = 0;

@@ -12,8 +12,8 @@
 // untouched, motion along a wall is slowed only as much as the wall's oblique returns ask. The
 // command is projected onto the most broken of these half-planes, again and again (a wall
 // needs one cut, a corner two or three); if bounds are still broken after kMaxCuts the command
-// becomes zero, which breaks none while every return is beyond stop_distance. Each cut is a
-// pass over the returns within reach. Integer only, in mm/s and Q14 directions, for the
+// is scaled down until none is (zero, the last resort, breaks none while every return is
+// beyond stop_distance). Each cut is a pass over the returns within reach. Integer only, in mm/s and Q14 directions, for the
 // FPU-less Verdex.
 //
 // Behind the laser (the URG-04LX's 120 degrees, the UTM-30LX's 90) nothing is seen: the
@@ -33,13 +33,14 @@ namespace kestrel::exploration {
 
 struct ApproachResult {
   uint8_t cuts = 0;          // projections onto a broken bound
-  bool stopped = false;      // bounds still broken after the last cut: the command was zeroed
+  bool scaled = false;       // bounds still broken after the last cut: the command was scaled
+  bool stopped = false;      // ... down to zero (a return inside stop_distance was still closed on)
   float removed_mps = 0.0f;  // |command in - command out|
 };
 
 class ApproachLimiter {
  public:
-  static constexpr uint8_t kMaxCuts = 8;
+  static constexpr uint8_t kMaxCuts = 12;
   static constexpr std::size_t kMaxBlind = 72;  // directions sampled in the blind arc
 
   // kInvalidArgument for parameters that fail ApproachParams::validate or an invalid geometry
@@ -52,6 +53,9 @@ class ApproachLimiter {
   ApproachResult limit(const LaserScan& scan, const BeamDirections& directions, Eigen::Vector2f& v) const;
 
  private:
+  void scale_to_bounds(const LaserScan& scan, const BeamDirections& directions, int64_t& vx, int64_t& vy,
+                       ApproachResult& out) const;
+
   int32_t stop_mm_ = 0;
   int32_t gain_q8_ = 0;  // 1/s in Q8: bound (mm/s) = (gain_q8 * (r - stop)) >> 8
   int32_t max_mm_ = 0;

@@ -40,7 +40,8 @@ struct ExplorerStatus {
   Eigen::Vector2f v_fr = Eigen::Vector2f::Zero();  // world frame, m/s (blend)
   float heading_target_rad = 0;                    // before the yaw-rate limit
   ApproachResult approach;                         // the approach limiter on the last command
-  uint32_t approach_stops = 0;                     // commands the limiter zeroed, since reset
+  uint32_t approach_scaled = 0;                    // commands the limiter scaled (not settled), since reset
+  uint32_t approach_stops = 0;                     // ... of those, to zero
 };
 
 class Explorer {
@@ -57,6 +58,12 @@ class Explorer {
   // backwards: kTimeJump) it writes a hold: kVelocity with zero velocity at the last good
   // position, heading held, and leaves the exploration state untouched.
   virtual Status step(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& out) = 0;
+  // Bounds a velocity set-point from elsewhere (the flight home along the trail) with this
+  // explorer's approach limiter, against the scan and the heading of nav. kOk also when the
+  // limiter is off or the set-point is not kVelocity (left as it is); kInvalidArgument for an
+  // unconfigured explorer, a scan of another geometry or a non-finite heading, and then the
+  // horizontal velocity is zeroed: unbounded it could not be trusted near a wall.
+  virtual Status bound_velocity(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& setpoint) = 0;
   // Nothing left to explore (the SRT root owns no frontier); never for wallfollow.
   virtual bool finished() const = 0;
   // The SRT-Star planner (tree, frontiers, waypoint) for introspection; nullptr for wallfollow.

@@ -14,6 +14,7 @@ class ExplorerBase : public Explorer {
   Status configure(const Params& params, const BeamGeometry& geometry) override;
   void reset() override;
   Status step(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& out) final;
+  Status bound_velocity(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& setpoint) final;
   const ExplorerStatus& status() const override { return status_; }
   const Params& params() const { return params_; }
 

@@ -45,6 +45,8 @@ struct MissionParams {
   float estimate_timeout_s = 0.5f;     // stale or invalid estimate for longer => failsafe
   float explore_time_limit_s = 600.0f; // explore phase ends after this, frontiers or not
   float return_speed_mps = 0.6f;       // cruise speed along the breadcrumb trail
+  float return_yaw_rate_radps = 0.5f;  // heading turns towards the way home at most this fast
+  float return_stall_s = 30.0f;        // no progress home for this long: land where it is
   float breadcrumb_spacing_m = 0.4f;
 };
 
@@ -66,6 +68,8 @@ class MissionController {
 
   Phase phase() const { return phase_; }
   bool finished() const { return phase_ == Phase::kLanded; }
+  // The flight home reached home (false while under way, and after landing short of it).
+  bool returned_home() const { return returned_home_; }
   // True while the motors should run (take-off until touchdown).
   bool wants_armed() const { return phase_ != Phase::kIdle && phase_ != Phase::kLanded; }
   // True while the vehicle rests on the ground (before take-off, after touchdown).
@@ -100,6 +104,10 @@ class MissionController {
   TimeUs arrived_at_;
   bool at_waypoint_ = false;
   std::size_t return_index_ = 0;
+  std::size_t progress_index_ = 0;  // flight home: breadcrumb and carrot distance at the last progress
+  float progress_distance_ = 0;
+  TimeUs progress_at_;
+  bool returned_home_ = false;
   bool configured_ = false;
 };
 
