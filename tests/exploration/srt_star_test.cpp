@@ -238,6 +238,46 @@ TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
   EXPECT_EQ(planner->waypoint_time(), issued + Duration::from_s(10.1));
 }
 
+TEST(SrtStarPlanner, HeldOffItsWaypointNearbyTheVehicleHasArrived) {
+  // The approach limiter holds the vehicle 0.6 m short of a waypoint that the estimate's shift
+  // put against a wall: after blocked_time_s without coming nearer, it has arrived.
+  auto planner = std::make_unique<SrtStarPlanner>();
+  GuidanceParams g;
+  g.waypoint_time_limit_s = 30.0f;
+  ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
+  const SegmentWorld world = l_corridors();
+  (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);
+  const std::size_t grown = planner->tree().nodes().size();
+  ASSERT_FALSE(planner->finished());
+  const TimeUs issued = planner->waypoint_time();
+  const Point2 wp = planner->waypoint();
+  bool fresh = false;
+  // Creeping nearer, 6 cm every 4 s, is progress: no arrival while it lasts.
+  for (int k = 0; k < 3; ++k) {
+    const Pose2 creeping{wp.x - 0.78f + 0.06f * k, wp.y, 0};
+    ASSERT_EQ(planner->update(creeping, world.scan(kUrg, creeping.x, creeping.y, 0),
+                              issued + Duration::from_s(1.0 + 4.0 * k), fresh),
+              Status::kOk);
+    EXPECT_FALSE(fresh) << k;
+  }
+  // Held where the creep stopped, 0.66 m off, from 9 s on: arrived once blocked_time_s has
+  // passed.
+  const Pose2 held{wp.x - 0.66f, wp.y, 0};
+  const LaserScan scan = world.scan(kUrg, held.x, held.y, 0);
+  ASSERT_EQ(planner->update(held, scan, issued + Duration::from_s(9.0 + g.blocked_time_s - 0.1), fresh),
+            Status::kOk);
+  EXPECT_FALSE(fresh);
+  EXPECT_EQ(planner->blocked_arrivals(), 0u);
+  ASSERT_EQ(planner->update(held, scan, issued + Duration::from_s(9.0 + g.blocked_time_s + 0.1), fresh),
+            Status::kOk);
+  EXPECT_EQ(planner->blocked_arrivals(), 1u);
+  EXPECT_EQ(planner->restarts(), 0u);
+  // A new node where the vehicle is, and the tree kept.
+  ASSERT_EQ(planner->tree().nodes().size(), grown + 1);
+  EXPECT_FLOAT_EQ(planner->tree().nodes().back().position.x, held.x);
+  // Held beyond blocked_arrival_distance_m it is the time limit's case (above), not this.
+}
+
 TEST(SrtStarPlanner, FullTreeRestartsExploration) {
   auto planner = std::make_unique<SrtStarPlanner>();
   ASSERT_EQ(planner->configure({}, {}), Status::kOk);

@@ -280,7 +280,10 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
     out.emplace_back("approach_scaled", e->status().approach_scaled);
     out.emplace_back("approach_stops", e->status().approach_stops);
     out.emplace_back("return_setpoints_unbounded", c.guidance_rejected);
-    if (e->planner() != nullptr) out.emplace_back("srt_restarts", e->planner()->restarts());
+    if (e->planner() != nullptr) {
+      out.emplace_back("srt_restarts", e->planner()->restarts());
+      out.emplace_back("srt_blocked_arrivals", e->planner()->blocked_arrivals());
+    }
   }
   const Scheduler& s = stack_->scheduler();
   for (std::size_t i = 0; i < s.task_count(); ++i) {

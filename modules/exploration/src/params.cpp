@@ -31,7 +31,8 @@ Status Params::validate() const {
   }
   const bool guidance_ok = positive(guidance.arrival_distance_m) && non_negative(guidance.gain_fr) &&
                            positive(guidance.speed_limit_mps) && positive(guidance.yaw_rate_limit_radps) &&
-                           positive(guidance.waypoint_time_limit_s) && std::isfinite(guidance.altitude_m) &&
+                           positive(guidance.waypoint_time_limit_s) && positive(guidance.blocked_arrival_distance_m) &&
+                           positive(guidance.blocked_time_s) && std::isfinite(guidance.altitude_m) &&
                            non_negative(guidance.cruise_speed_mps) && non_negative(guidance.wall_hold_gain);
   return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach.validate() == Status::kOk
              ? Status::kOk

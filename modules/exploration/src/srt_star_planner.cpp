@@ -3,9 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace kestrel::exploration {
+namespace {
+// Coming this much nearer the waypoint is progress (blocked arrivals).
+constexpr float kProgressM = 0.05f;
+}  // namespace
 
 const char* to_string(PlannerMode m) {
   switch (m) {
@@ -42,6 +47,7 @@ void SrtStarPlanner::reset() {
   target_node_ = kNoNode;
   aligning_ = false;
   waypoints_issued_ = 0;
+  blocked_arrivals_ = 0;
   restarts_ = 0;
   last_restart_ = RestartReason::kNone;
   step_ = Step::kNone;
@@ -62,7 +68,20 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
   } else {
     const float dx = waypoint_.x - pose.x, dy = waypoint_.y - pose.y;
     const float radius = aligning_ ? 0.5f * guidance_.arrival_distance_m : guidance_.arrival_distance_m;
-    const bool arrived = dx * dx + dy * dy < radius * radius;
+    const float dist = std::sqrt(dx * dx + dy * dy);
+    if (dist < closest_m_ - kProgressM) {
+      closest_m_ = dist;
+      closest_at_ = now;
+    }
+    // A waypoint drawn clear of the returns can end up against a wall when the estimate
+    // shifts after it was drawn (a scan-matching correction along a corridor): the approach
+    // limiter then holds the vehicle off it, and short of section V's time limit, which
+    // erases the whole tree, the vehicle would wait there. Near enough and no nearer for a
+    // while, it has arrived as closely as the walls allow.
+    const bool blocked = dist < guidance_.blocked_arrival_distance_m &&
+                         (now - closest_at_).seconds() > static_cast<double>(guidance_.blocked_time_s);
+    const bool arrived = dist < radius || blocked;
+    if (blocked && dist >= radius && mode_ != PlannerMode::kFinished) ++blocked_arrivals_;
     const bool late = (now - waypoint_time_).seconds() > static_cast<double>(guidance_.waypoint_time_limit_s);
     if (mode_ == PlannerMode::kFinished) {
       // Stays on the root; nothing left to explore.
@@ -375,6 +394,8 @@ uint32_t SrtStarPlanner::check_path(uint32_t budget, TimeUs now) {
 void SrtStarPlanner::set_waypoint(Point2 p, TimeUs now) {
   waypoint_ = p;
   waypoint_time_ = now;
+  closest_m_ = std::numeric_limits<float>::infinity();
+  closest_at_ = now;
   ++waypoints_issued_;
 }
 

@@ -80,6 +80,10 @@ struct GuidanceParams {
   float speed_limit_mps = 0.5f;         // section V
   float yaw_rate_limit_radps = 0.5f;    // section V, on the heading command
   float waypoint_time_limit_s = 30.0f;  // section V: exceeded -> erase the SRT and restart
+  float blocked_arrival_distance_m = 0.8f;  // within this of the waypoint and no nearer for
+  float blocked_time_s = 5.0f;              // this long: arrived as closely as the walls allow
+                                            // (a waypoint the estimate's shift put against a
+                                            // wall; approach stop distance 0.4 m + d + margin)
   float altitude_m = 1.0f;              // constant altitude command (section II)
   float cruise_speed_mps = 0.3f;        // wall-following baseline only: speed along the wall
   float wall_hold_gain = 0.5f;          // wall-following baseline only, 1/s: pulls the nearest

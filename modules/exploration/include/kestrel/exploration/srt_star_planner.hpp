@@ -79,6 +79,7 @@ class SrtStarPlanner {
   uint32_t waypoints_issued() const { return waypoints_issued_; }
   uint32_t restarts() const { return restarts_; }
   RestartReason last_restart_reason() const { return last_restart_; }
+  uint32_t blocked_arrivals() const { return blocked_arrivals_; }  // see GuidanceParams::blocked_*
   TimeUs waypoint_time() const { return waypoint_time_; }
 
  private:
@@ -113,6 +114,9 @@ class SrtStarPlanner {
   uint16_t target_node_ = kNoNode;
   bool aligning_ = false;  // backtracking: closing in on the node before leaving for its parent
   TimeUs waypoint_time_{};
+  float closest_m_ = 0;  // nearest the vehicle has come to the waypoint, and when
+  TimeUs closest_at_{};
+  uint32_t blocked_arrivals_ = 0;
   uint32_t waypoints_issued_ = 0;
   uint32_t restarts_ = 0;
   RestartReason last_restart_ = RestartReason::kNone;
