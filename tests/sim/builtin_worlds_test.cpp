@@ -21,6 +21,19 @@ TEST(BuiltinWorlds, AllFiveParseWithRoomsAndAReachableStart) {
   }
 }
 
+TEST(BuiltinWorlds, GtBuildingsInnerRoomIsTheRoomInsideIt) {
+  // The inner room lies inside the north-east room: a point in it is in the inner room.
+  const auto r = load_builtin_world("gt-building");
+  ASSERT_TRUE(r.ok) << r.error;
+  const World& w = r.world;
+  const int inner = w.room_at(18.0, 13.0);
+  ASSERT_GE(inner, 0);
+  EXPECT_EQ(w.rooms[static_cast<std::size_t>(inner)].name, "inner");
+  const int outer = w.room_at(22.5, 14.0);
+  ASSERT_GE(outer, 0);
+  EXPECT_EQ(w.rooms[static_cast<std::size_t>(outer)].name, "north-east");
+}
+
 TEST(BuiltinWorlds, UnknownNameListsTheKnownOnes) {
   const auto r = load_world("nowhere");
   EXPECT_FALSE(r.ok);

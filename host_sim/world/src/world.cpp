@@ -1,6 +1,7 @@
 #include "kestrel/sim/world.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace kestrel::sim {
 
@@ -54,6 +55,13 @@ Bounds2 World::bounds() const {
   return b;
 }
 
+double polygon_signed_area(const std::vector<Eigen::Vector2d>& poly) {
+  double twice = 0;  // shoelace
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+    twice += poly[j].x() * poly[i].y() - poly[i].x() * poly[j].y();
+  return 0.5 * twice;
+}
+
 bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
   bool inside = false;
   const std::size_t n = poly.size();
@@ -69,10 +77,20 @@ bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vec
 }
 
 int World::room_at(double x, double y) const {
+  // Rooms may nest (gt-building's inner room lies inside its north-east room): the smallest
+  // room containing the point is the one it is in.
   const Eigen::Vector2d p(x, y);
-  for (std::size_t i = 0; i < rooms.size(); ++i)
-    if (point_in_polygon(rooms[i].polygon, p)) return static_cast<int>(i);
-  return -1;
+  int best = -1;
+  double best_area = 0;
+  for (std::size_t i = 0; i < rooms.size(); ++i) {
+    if (!point_in_polygon(rooms[i].polygon, p)) continue;
+    const double area = std::fabs(polygon_signed_area(rooms[i].polygon));
+    if (best < 0 || area < best_area) {
+      best = static_cast<int>(i);
+      best_area = area;
+    }
+  }
+  return best;
 }
 
 }  // namespace kestrel::sim

@@ -101,10 +101,7 @@ bool make_convex_ccw(std::vector<Eigen::Vector2d>& poly) {
     if (s != sign) return false;
   }
   // Also reject self-intersecting "stars" whose turns agree: total turning must be 2*pi.
-  double area = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    area += poly[i].x() * poly[(i + 1) % n].y() - poly[(i + 1) % n].x() * poly[i].y();
-  if (std::fabs(area) < 1e-12) return false;
+  if (std::fabs(polygon_signed_area(poly)) < 1e-12) return false;
   double turning = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector2d e1 = poly[(i + 1) % n] - poly[i];

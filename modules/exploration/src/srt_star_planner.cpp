@@ -46,6 +46,7 @@ void SrtStarPlanner::reset() {
   current_ = kNoNode;
   target_node_ = kNoNode;
   aligning_ = false;
+  straight_to_parent_ = false;
   waypoints_issued_ = 0;
   blocked_arrivals_ = 0;
   restarts_ = 0;
@@ -86,6 +87,10 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     if (mode_ == PlannerMode::kFinished) {
       // Stays on the root; nothing left to explore.
     } else if (arrived && mode_ == PlannerMode::kBacktrack) {
+      // Held off the node it was closing in on: closing in again would issue the same
+      // waypoint for ever (and keep the time limit from running), so it leaves for the parent
+      // from where it is.
+      straight_to_parent_ = aligning_ && dist >= radius;
       aligning_ = false;
       current_ = target_node_;
       target_node_ = kNoNode;
@@ -106,6 +111,7 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
 void SrtStarPlanner::restart_tree(RestartReason why) {
   tree_.clear();
   aligning_ = false;
+  straight_to_parent_ = false;
   mode_ = PlannerMode::kIdle;
   current_ = kNoNode;
   target_node_ = kNoNode;
@@ -296,7 +302,7 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
     const float ox = node.position.x - job_pose_.x, oy = node.position.y - job_pose_.y;
     const float half_d = 0.5f * guidance_.arrival_distance_m;
     const Point2 parent = tree_.nodes()[node.parent].position;
-    if (ox * ox + oy * oy > half_d * half_d) return start_path(parent, true);
+    if (ox * ox + oy * oy > half_d * half_d && !straight_to_parent_) return start_path(parent, true);
     mode_ = PlannerMode::kBacktrack;
     target_node_ = node.parent;
     set_waypoint(parent, now);
@@ -396,6 +402,7 @@ void SrtStarPlanner::set_waypoint(Point2 p, TimeUs now) {
   waypoint_time_ = now;
   closest_m_ = std::numeric_limits<float>::infinity();
   closest_at_ = now;
+  straight_to_parent_ = false;
   ++waypoints_issued_;
 }
 

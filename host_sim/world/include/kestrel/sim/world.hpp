@@ -74,10 +74,12 @@ class World {
   std::vector<Segment> segments() const;
   std::size_t piece_count() const { return walls.size() + obstacles.size(); }
   Bounds2 bounds() const;
-  // Index of the first room containing (x, y), or -1.
+  // Index of the smallest room containing (x, y) (rooms may nest), or -1.
   int room_at(double x, double y) const;
 };
 
 bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p);
+// Area enclosed by a simple polygon (m^2): positive counter-clockwise, negative clockwise.
+double polygon_signed_area(const std::vector<Eigen::Vector2d>& poly);
 
 }  // namespace kestrel::sim

@@ -113,6 +113,7 @@ class SrtStarPlanner {
   uint16_t current_ = kNoNode;
   uint16_t target_node_ = kNoNode;
   bool aligning_ = false;  // backtracking: closing in on the node before leaving for its parent
+  bool straight_to_parent_ = false;  // the closing in was held off: leave for the parent as is
   TimeUs waypoint_time_{};
   float closest_m_ = 0;  // nearest the vehicle has come to the waypoint, and when
   TimeUs closest_at_{};
