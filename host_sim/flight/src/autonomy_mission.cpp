@@ -155,6 +155,11 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "approach_blind_mps" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d < 0 || d > 10) return "approach_blind_mps: '" + value + "' is not a speed in [0, 10] m/s";
       out.stack.explorer.approach.blind_speed_mps = static_cast<float>(d);
+    } else if (key == "altitude_m" && kind != mission::MissionKind::kWaypoints) {
+      // Paper 000 section 3.3: the laser sees only its own plane; an operator picks the height
+      // that clears what it cannot see (iarc-arena's 1.0 m stair railing) and still sees the rest.
+      if (!parse_double(value, d) || d < 0.3 || d > 3.0) return "altitude_m: '" + value + "' is not a height in [0.3, 3] m";
+      out.stack.mission.takeoff_altitude_m = static_cast<float>(d);
     } else if (key == "delay_s") {
       if (!parse_double(value, d) || d < 0 || d > 2) return "delay_s: '" + value + "' is not a delay in [0, 2] s";
       out.delay_s = d;
