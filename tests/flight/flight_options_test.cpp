@@ -1,5 +1,8 @@
-// kestrel-sim's explore options: the operator's keep-out boxes (--mission-arg keepout=...).
+// kestrel-sim's flight options: the operator's keep-out boxes (--mission-arg keepout=...), the
+// approach limiter, the perception range and the flight height.
 #include <gtest/gtest.h>
+
+#include <utility>
 
 #include "kestrel/flight/autonomy_mission.hpp"
 
@@ -35,6 +38,38 @@ TEST(FlightOptions, MalformedKeepOutsAreRefusedWithAReason) {
   opt.values["keepout"] = "0,0,1,1";
   FlightOptions f;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, opt, f), "");
+}
+
+TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
+  sim::MissionOptions opt;
+  opt.values["approach"] = "off";
+  opt.values["approach_blind_mps"] = "0.2";
+  opt.values["srt_range_m"] = "5";
+  opt.values["altitude_m"] = "1.2";
+  FlightOptions f;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
+  EXPECT_FALSE(f.stack.explorer.approach.enabled);
+  EXPECT_FLOAT_EQ(f.stack.explorer.approach.blind_speed_mps, 0.2f);
+  EXPECT_FLOAT_EQ(f.stack.explorer.srt.perception_range_m, 5.0f);
+  EXPECT_FLOAT_EQ(f.stack.mission.takeoff_altitude_m, 1.2f);
+  EXPECT_EQ(f.stack.explorer.validate(), Status::kOk);
+  for (const auto& [key, bad] : {std::pair<const char*, const char*>{"approach", "maybe"},
+                                 {"approach_blind_mps", "-1"},
+                                 {"srt_range_m", "0"},
+                                 {"altitude_m", "0.1"},
+                                 {"altitude_m", "high"}}) {
+    sim::MissionOptions b;
+    b.values[key] = bad;
+    FlightOptions g;
+    EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, b, g), "") << key << "=" << bad;
+  }
+  // The flight height is every flying mission's; the explorer's knobs are explore's only.
+  sim::MissionOptions hover;
+  hover.values["altitude_m"] = "1.5";
+  FlightOptions h;
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, hover, h), "");
+  hover.values["approach"] = "on";
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, hover, h), "");
 }
 
 }  // namespace
