@@ -3,6 +3,10 @@
 #include <algorithm>
 
 namespace kestrel::autonomy {
+namespace {
+// Flying home, a scan older than this many scan periods no longer bounds the flight.
+constexpr int64_t kReturnScanMaxAgePeriods = 3;
+}  // namespace
 
 AutonomyStack::AutonomyStack(const Devices& devices, const TimeSource& exec_clock)
     : dev_(devices),
@@ -122,6 +126,8 @@ void AutonomyStack::scan_task() {
     return;
   }
   ++counters_.scans;
+  newest_scan_ = scan_;
+  newest_scan_fresh_ = true;
   // Centre the search on the filter's pose at the scan's time: the IMU carries it through a
   // turn or a lost match, where the matcher's own constant-velocity guess would not.
   // Its uncertainty sizes the window: what the filter has not already accounted for. The
@@ -166,11 +172,33 @@ void AutonomyStack::guidance_task(TimeUs now) {
     ++counters_.guidance_steps;
   }
   setpoint_ = mission_.step(now, nav_, explorer_ != nullptr ? &explorer_out_ : nullptr);
+  if (explorer_ != nullptr && mission_.phase() == mission::Phase::kReturn &&
+      setpoint_.mode == GuidanceSetpoint::Mode::kVelocity)
+    bound_return_setpoint(now);
+}
+
+void AutonomyStack::bound_return_setpoint(TimeUs now) {
   // On the way home the trail is in the estimate's frame, which may have drifted since it was
-  // drawn: the explorer's approach limiter bounds the flight against the newest scan.
-  if (explorer_ != nullptr && mission_.phase() == mission::Phase::kReturn && guidance_scan_.beam_count > 0 &&
-      explorer_->bound_velocity(nav_, guidance_scan_, setpoint_) != Status::kOk)
+  // drawn: the explorer's approach limiter bounds the flight against the newest scan, matched
+  // or not (a run of rejected matches must not leave it looking at old walls). Once per scan,
+  // like the explorer; between scans the bounded velocity stands. Without a recent scan the
+  // vehicle holds.
+  const Duration period = dev_.laser.geometry().scan_period;
+  const bool recent = newest_scan_.beam_count > 0 && now - newest_scan_.stamp <= period * kReturnScanMaxAgePeriods;
+  if (!recent) {
+    setpoint_.velocity_mps.x() = 0.0f;
+    setpoint_.velocity_mps.y() = 0.0f;
     ++counters_.guidance_rejected;
+    return;
+  }
+  if (newest_scan_fresh_) {
+    newest_scan_fresh_ = false;
+    if (explorer_->bound_velocity(nav_, newest_scan_, setpoint_) != Status::kOk) ++counters_.guidance_rejected;
+    return_velocity_ = setpoint_.velocity_mps;
+    return;
+  }
+  setpoint_.velocity_mps.x() = return_velocity_.x();
+  setpoint_.velocity_mps.y() = return_velocity_.y();
 }
 
 void AutonomyStack::control_task(TimeUs now) {

@@ -111,7 +111,7 @@ void ApproachLimiter::scale_to_bounds(const LaserScan& scan, const BeamDirection
   int64_t factor = kOne;  // Q16
   const std::size_t n = std::min<std::size_t>(scan.beam_count, kMaxBeams);
   auto fit = [&](int64_t closing, int64_t bound) {
-    if (closing <= bound) return;
+    if (closing <= bound + kToleranceMmps) return;
     // Inside stop_distance (bound <= 0) no factor helps: the command stops.
     factor = bound <= 0 ? 0 : std::min(factor, (bound * kOne) / closing);
   };

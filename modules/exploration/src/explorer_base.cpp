@@ -102,7 +102,9 @@ Status ExplorerBase::step(const NavState& nav, const LaserScan& scan, GuidanceSe
   out.position_m.z() = params_.guidance.altitude_m;
   if (out.mode == GuidanceSetpoint::Mode::kVelocity) {
     Eigen::Vector2f v = limit_speed(out.velocity_mps.head<2>(), params_.guidance.speed_limit_mps);
-    if (approach_.enabled()) v = limit_approach(scan, pose.theta, v);
+    // Backing off a return inside the stop distance can add speed: the limit is applied again.
+    if (approach_.enabled())
+      v = limit_speed(limit_approach(scan, pose.theta, v), params_.guidance.speed_limit_mps);
     out.velocity_mps = {v.x(), v.y(), 0.0f};
   }
   status_.heading_target_rad = heading_target;

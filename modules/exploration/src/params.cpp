@@ -34,7 +34,10 @@ Status Params::validate() const {
                            positive(guidance.waypoint_time_limit_s) && positive(guidance.blocked_arrival_distance_m) &&
                            positive(guidance.blocked_time_s) && std::isfinite(guidance.altitude_m) &&
                            non_negative(guidance.cruise_speed_mps) && non_negative(guidance.wall_hold_gain);
-  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach.validate() == Status::kOk
+  // A waypoint is drawn clearance_m from the returns: the limiter must let the vehicle get there.
+  const bool approach_ok = approach.validate() == Status::kOk &&
+                           (!approach.enabled || approach.stop_distance_m <= srt.clearance_m);
+  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach_ok
              ? Status::kOk
              : Status::kInvalidArgument;
 }

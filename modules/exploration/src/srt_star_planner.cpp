@@ -26,13 +26,14 @@ const char* to_string(PlannerMode m) {
   return "unknown";
 }
 
-Status SrtStarPlanner::configure(const SrtParams& srt, const GuidanceParams& guidance) {
+Status SrtStarPlanner::configure(const SrtParams& srt, const GuidanceParams& guidance, bool guarded) {
   Params check;
   check.srt = srt;
   check.guidance = guidance;
   if (check.validate() != Status::kOk) return Status::kInvalidArgument;
   srt_ = srt;
   guidance_ = guidance;
+  guarded_ = guarded;
   reset();
   return Status::kOk;
 }
@@ -88,9 +89,9 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
       // Stays on the root; nothing left to explore.
     } else if (arrived && mode_ == PlannerMode::kBacktrack) {
       // Held off the node it was closing in on: closing in again would issue the same
-      // waypoint for ever (and keep the time limit from running), so it leaves for the parent
-      // from where it is.
-      straight_to_parent_ = aligning_ && dist >= radius;
+      // waypoint for ever (and keep the time limit from running), so a vehicle whose commands
+      // the approach limiter guards leaves for the parent from where it is.
+      straight_to_parent_ = guarded_ && aligning_ && dist >= radius;
       aligning_ = false;
       current_ = target_node_;
       target_node_ = kNoNode;

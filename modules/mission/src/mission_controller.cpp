@@ -187,14 +187,18 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       return s;
     }
     case Phase::kReturn: {
-      // Fly the trail backwards, chasing a carrot at most one second of travel ahead.
-      Eigen::Vector3f target = trail_.size() > 0 ? trail_.point(return_index_) : home_;
-      target.z() = alt;
+      // Fly the trail backwards, breadcrumb by breadcrumb; the first one is where exploring
+      // began, near home, so the last leg is to home itself.
+      auto breadcrumb = [&](std::size_t i) {
+        Eigen::Vector3f p = trail_.size() > 0 && i > 0 ? trail_.point(i) : home_;
+        p.z() = alt;
+        return p;
+      };
+      Eigen::Vector3f target = breadcrumb(return_index_);
       const float pass_radius = std::max(0.3f, params_.arrive_radius_m);
       while (return_index_ > 0 && (nav.position_m - target).head<2>().norm() < pass_radius) {
         --return_index_;
-        target = trail_.point(return_index_);
-        target.z() = alt;
+        target = breadcrumb(return_index_);
       }
       if (return_index_ == 0 && arrived(nav, {home_.x(), home_.y(), alt})) {
         hold_point_ = {home_.x(), home_.y(), alt};
@@ -208,7 +212,9 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       // into a wall the approach limiter will not let the vehicle hit): land where it is
       // rather than hover until the battery is gone.
       const float to_carrot = (target - nav.position_m).head<2>().norm();
-      if (return_index_ < progress_index_ || to_carrot < progress_distance_ - kReturnProgressM) {
+      if (!estimate_ok) {
+        // No position to judge progress by (or to land at): the failsafe takes over if this lasts.
+      } else if (return_index_ < progress_index_ || to_carrot < progress_distance_ - kReturnProgressM) {
         progress_index_ = return_index_;
         progress_distance_ = to_carrot;
         progress_at_ = now;

@@ -98,6 +98,7 @@ class AutonomyStack {
   void imu_task();
   void scan_task();
   void guidance_task(TimeUs now);
+  void bound_return_setpoint(TimeUs now);
   void control_task(TimeUs now);
 
   Devices dev_;
@@ -120,6 +121,9 @@ class AutonomyStack {
   LaserScan scan_;             // the scan being matched
   LaserScan guidance_scan_;    // the newest matched scan, for the explorer
   bool guidance_scan_fresh_ = false;
+  LaserScan newest_scan_;      // the newest scan, matched or not: the flight home's limiter
+  bool newest_scan_fresh_ = false;
+  Eigen::Vector3f return_velocity_ = Eigen::Vector3f::Zero();  // bounded on the newest scan
   mission::ExplorerOutput explorer_out_;  // the explorer's newest set-point
   scan_matching::ScanMatch last_match_;
   bool new_match_ = false;

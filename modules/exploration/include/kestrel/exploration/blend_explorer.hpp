@@ -18,7 +18,9 @@ class BlendExplorer final : public ExplorerBase {
  private:
   Status plan(const Pose2& pose, const LaserScan& scan, TimeUs now, GuidanceSetpoint& out,
               float& heading_target) override;
-  Status configure_strategy() override { return planner_.configure(params_.srt, params_.guidance); }
+  Status configure_strategy() override {
+    return planner_.configure(params_.srt, params_.guidance, params_.approach.enabled);
+  }
   void reset_strategy() override { planner_.reset(); }
 
   SrtStarPlanner planner_;

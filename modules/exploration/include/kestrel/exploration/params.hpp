@@ -91,12 +91,14 @@ struct GuidanceParams {
 };
 
 // The approach limiter (approach_limiter.hpp): the velocity-commanding explorers (blend,
-// wallfollow) never close on a laser return faster than gain * (range - stop_distance_m).
-// Not part of paper 002, whose blend keeps off walls only on balance; off reproduces the paper.
+// wallfollow) and the flight home (Explorer::bound_velocity) never close on a laser return
+// faster than gain * (range - stop_distance_m). Not part of paper 002, whose blend keeps off
+// walls only on balance; off reproduces the paper (and leaves the flight home unbounded).
 struct ApproachParams {
   bool enabled = true;
-  float stop_distance_m = 0.4f;  // vehicle radius 0.27 m + 0.13 m for the controller's lag; the
-                                 // SRT clearance, so every waypoint stays reachable; 0.95 m gaps
+  float stop_distance_m = 0.4f;  // vehicle radius 0.27 m + 0.13 m for the controller's lag; at
+                                 // most the SRT clearance (checked), so every waypoint stays
+                                 // reachable; 0.95 m gaps
                                  // (gt-building's inner room) leave 7.5 cm either side
   float gain = 1.0f;             // 1/s: 0.5 m/s is allowed from 0.9 m, 0.25 m/s at r_safe
   float blind_speed_mps = 0.1f;  // closing speed allowed towards any direction the laser does not

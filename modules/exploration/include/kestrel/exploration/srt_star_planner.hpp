@@ -56,7 +56,9 @@ enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull };
 class SrtStarPlanner {
  public:
   // kInvalidArgument for invalid parameters (the planner keeps its previous configuration).
-  Status configure(const SrtParams& srt, const GuidanceParams& guidance);
+  // `guarded`: the vehicle's commands pass the approach limiter, so a backtrack held off its
+  // node may leave for the parent without the straight-path check (never for SRT alone).
+  Status configure(const SrtParams& srt, const GuidanceParams& guidance, bool guarded = false);
   void reset();  // forget the tree; the PRNG restarts from the seed
 
   // Algorithm 1, lines 2-10, for a vehicle at `pose` (world frame) with the scan just taken
@@ -114,6 +116,7 @@ class SrtStarPlanner {
   uint16_t target_node_ = kNoNode;
   bool aligning_ = false;  // backtracking: closing in on the node before leaving for its parent
   bool straight_to_parent_ = false;  // the closing in was held off: leave for the parent as is
+  bool guarded_ = false;
   TimeUs waypoint_time_{};
   float closest_m_ = 0;  // nearest the vehicle has come to the waypoint, and when
   TimeUs closest_at_{};
