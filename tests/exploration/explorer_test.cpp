@@ -332,6 +332,34 @@ void bounds_a_velocity_setpoint_from_elsewhere(Explorer* ex) {
   EXPECT_FLOAT_EQ(sp.velocity_mps.head<2>().norm(), 0.0f);
 }
 
+TEST(BlendExplorer, KeepsOutOfAKeepOutBoxTheLaserCannotSee) {
+  // A glass window: no return, but the operator's box 0.8 m ahead bounds the command as a
+  // wall there would; inside the box, the vehicle backs out by the nearest side.
+  auto ex = std::make_unique<BlendExplorer>();
+  SegmentWorld far;
+  far.add_box(-10, -10, 10, 10);
+  const LaserScan scan = far.scan(kUrg, 0, 0, 0);
+  Params p;
+  p.srt.keep_out[0] = {0.8f, -1.0f, 1.0f, 1.0f};
+  p.srt.keep_out_count = 1;
+  ASSERT_EQ(ex->configure(p, BeamGeometry::of(scan)), Status::kOk);
+  GuidanceSetpoint sp;
+  sp.mode = GuidanceSetpoint::Mode::kVelocity;
+  sp.velocity_mps = {0.6f, 0.0f, 0.0f};
+  ASSERT_EQ(ex->bound_velocity(nav_at(0, 0, 0), scan, sp), Status::kOk);
+  EXPECT_NEAR(sp.velocity_mps.x(), 1.0f * (0.8f - 0.4f), 0.01f);
+  // Heading turned: the box is now to the left of the body, the bound the same in the world.
+  sp.velocity_mps = {0.6f, 0.0f, 0.0f};
+  ASSERT_EQ(ex->bound_velocity(nav_at(0, 0, -1.2f), far.scan(kUrg, 0, 0, -1.2), sp), Status::kOk);
+  EXPECT_NEAR(sp.velocity_mps.x(), 0.4f, 0.01f);
+  // Inside, 0.05 m from its near side, facing out of it: pushed back out through that side.
+  sp.velocity_mps = {0.0f, 0.0f, 0.0f};
+  const float out = static_cast<float>(M_PI);
+  ASSERT_EQ(ex->bound_velocity(nav_at(0.85f, 0, out), far.scan(kUrg, 0.85, 0, out), sp), Status::kOk);
+  EXPECT_LT(sp.velocity_mps.x(), -0.3f);
+  EXPECT_NEAR(sp.velocity_mps.y(), 0.0f, 0.01f);
+}
+
 TEST(BlendExplorer, BoundsAVelocitySetpointFromElsewhere) {
   bounds_a_velocity_setpoint_from_elsewhere(std::make_unique<BlendExplorer>().get());
 }

@@ -40,9 +40,20 @@ Status ApproachLimiter::configure(const ApproachParams& params, const BeamGeomet
 }
 
 ApproachResult ApproachLimiter::limit(const LaserScan& scan, const BeamDirections& directions,
-                                      Eigen::Vector2f& v) const {
+                                      Eigen::Vector2f& v, std::span<const VirtualReturn> virtual_returns) const {
   ApproachResult out;
   if (!enabled_) return out;
+  std::array<Virtual, kMaxVirtual> extra_store{};
+  std::size_t extras = 0;
+  for (const VirtualReturn& vr : virtual_returns) {
+    if (extras == kMaxVirtual) break;
+    if (!std::isfinite(vr.dir_x) || !std::isfinite(vr.dir_y) || !std::isfinite(vr.range_m)) continue;
+    const float range_mm = std::clamp(vr.range_m * 1000.0f, 0.0f, 60000.0f);
+    extra_store[extras++] = {BeamDirections::Trig::from_double(vr.dir_x).raw(),
+                             BeamDirections::Trig::from_double(vr.dir_y).raw(),
+                             (int64_t{gain_q8_} * (std::lround(range_mm) - stop_mm_)) >> 8};
+  }
+  const std::span<const Virtual> extra(extra_store.data(), extras);
   if (!v.allFinite()) v.setZero();
   const Eigen::Vector2f in = v;
   // 64-bit: a push-out inside stop_distance adds to the command, so no small bound holds.
@@ -76,6 +87,15 @@ ApproachResult ApproachLimiter::limit(const LaserScan& scan, const BeamDirection
         broken = true;
       }
     }
+    for (const Virtual& e : extra) {
+      const int64_t closing = (vx * e.c + vy * e.s + kRound) >> kQ;
+      if (closing - e.bound > worst) {
+        worst = closing - e.bound;
+        worst_c = e.c;
+        worst_s = e.s;
+        broken = true;
+      }
+    }
     if (speed > blind_bound_mmps_) {
       for (std::size_t k = 0; k < blind_count_; ++k) {
         const int64_t closing = (vx * blind_cos_[k].raw() + vy * blind_sin_[k].raw() + kRound) >> kQ;
@@ -93,7 +113,7 @@ ApproachResult ApproachLimiter::limit(const LaserScan& scan, const BeamDirection
       // close in on it slowly. What is left is scaled away, which the command's direction
       // survives: a scaled command closes on each return in proportion, so the largest factor
       // that keeps every bound is the smallest bound / closing.
-      scale_to_bounds(scan, directions, vx, vy, out);
+      scale_to_bounds(scan, directions, extra, vx, vy, out);
       break;
     }
     vx -= (worst * worst_c + kRound) >> kQ;
@@ -105,8 +125,9 @@ ApproachResult ApproachLimiter::limit(const LaserScan& scan, const BeamDirection
   return out;
 }
 
-void ApproachLimiter::scale_to_bounds(const LaserScan& scan, const BeamDirections& directions, int64_t& vx,
-                                      int64_t& vy, ApproachResult& out) const {
+void ApproachLimiter::scale_to_bounds(const LaserScan& scan, const BeamDirections& directions,
+                                      std::span<const Virtual> extra, int64_t& vx, int64_t& vy,
+                                      ApproachResult& out) const {
   constexpr int64_t kOne = int64_t{1} << 16;
   int64_t factor = kOne;  // Q16
   const std::size_t n = std::min<std::size_t>(scan.beam_count, kMaxBeams);
@@ -121,6 +142,7 @@ void ApproachLimiter::scale_to_bounds(const LaserScan& scan, const BeamDirection
     fit((vx * directions.cos[i].raw() + vy * directions.sin[i].raw() + kRound) >> kQ,
         (int64_t{gain_q8_} * (ri - stop_mm_)) >> 8);
   }
+  for (const Virtual& e : extra) fit((vx * e.c + vy * e.s + kRound) >> kQ, e.bound);
   for (std::size_t k = 0; k < blind_count_ && factor > 0; ++k)
     fit((vx * blind_cos_[k].raw() + vy * blind_sin_[k].raw() + kRound) >> kQ, blind_bound_mmps_);
   vx = (vx * factor) / kOne;

@@ -1,5 +1,7 @@
 #include "kestrel/exploration/explorer_base.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -104,7 +106,7 @@ Status ExplorerBase::step(const NavState& nav, const LaserScan& scan, GuidanceSe
     Eigen::Vector2f v = limit_speed(out.velocity_mps.head<2>(), params_.guidance.speed_limit_mps);
     // Backing off a return inside the stop distance can add speed: the limit is applied again.
     if (approach_.enabled())
-      v = limit_speed(limit_approach(scan, pose.theta, v), params_.guidance.speed_limit_mps);
+      v = limit_speed(limit_approach(scan, pose, v), params_.guidance.speed_limit_mps);
     out.velocity_mps = {v.x(), v.y(), 0.0f};
   }
   status_.heading_target_rad = heading_target;
@@ -122,18 +124,47 @@ Status ExplorerBase::bound_velocity(const NavState& nav, const LaserScan& scan, 
     return Status::kInvalidArgument;
   }
   if (!approach_.enabled()) return Status::kOk;
-  const Eigen::Vector2f v = limit_approach(scan, nav.heading_rad, setpoint.velocity_mps.head<2>());
+  const Pose2 pose{nav.position_m.x(), nav.position_m.y(), nav.heading_rad};
+  const Eigen::Vector2f v = limit_approach(scan, pose, setpoint.velocity_mps.head<2>());
   setpoint.velocity_mps.x() = v.x();
   setpoint.velocity_mps.y() = v.y();
   return Status::kOk;
 }
 
-Eigen::Vector2f ExplorerBase::limit_approach(const LaserScan& scan, float heading_rad, const Eigen::Vector2f& v) {
+Eigen::Vector2f ExplorerBase::limit_approach(const LaserScan& scan, const Pose2& pose, const Eigen::Vector2f& v) {
   // The returns are in the body frame: the command goes there and back (equation 4 and its
   // inverse), so the limit holds whatever the estimate's position error.
+  const float heading_rad = pose.theta;
   const float c = std::cos(heading_rad), s = std::sin(heading_rad);
   Eigen::Vector2f body{c * v.x() + s * v.y(), -s * v.x() + c * v.y()};
-  status_.approach = approach_.limit(scan, field_.directions(), body);
+  // The operator's keep-out boxes are in the navigation frame: their nearest points, as
+  // returns the laser cannot give (a glass window passes the beams; the field and the limiter
+  // would otherwise let the vehicle slide into one).
+  std::array<VirtualReturn, kMaxKeepOuts> boxes{};
+  std::size_t n = 0;
+  if (std::isfinite(pose.x) && std::isfinite(pose.y)) {
+    for (std::size_t i = 0; i < params_.srt.keep_out_count && i < kMaxKeepOuts; ++i) {
+      const KeepOut& k = params_.srt.keep_out[i];
+      const float nx = std::clamp(pose.x, k.x_min, k.x_max), ny = std::clamp(pose.y, k.y_min, k.y_max);
+      float wx = nx - pose.x, wy = ny - pose.y, range = std::hypot(wx, wy);
+      if (range < 1e-3f) {
+        // Inside: the "return" lies opposite the nearest way out, so backing off leaves by it.
+        const float to_face[4] = {pose.x - k.x_min, k.x_max - pose.x, pose.y - k.y_min, k.y_max - pose.y};
+        const float dir[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+        std::size_t best = 0;
+        for (std::size_t f = 1; f < 4; ++f)
+          if (to_face[f] < to_face[best]) best = f;
+        wx = dir[best][0];
+        wy = dir[best][1];
+        range = 0.0f;
+      } else {
+        wx /= range;
+        wy /= range;
+      }
+      boxes[n++] = {c * wx + s * wy, -s * wx + c * wy, range};
+    }
+  }
+  status_.approach = approach_.limit(scan, field_.directions(), body, std::span<const VirtualReturn>(boxes.data(), n));
   if (status_.approach.scaled) ++status_.approach_scaled;
   if (status_.approach.stopped) ++status_.approach_stops;
   return WallFollowField::to_inertial(body, heading_rad);

@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <span>
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
@@ -38,10 +39,18 @@ struct ApproachResult {
   float removed_mps = 0.0f;  // |command in - command out|
 };
 
+// A return the laser cannot give but the vehicle must keep off: the nearest point of an
+// operator keep-out box (a glass window passes the beams), in the body frame.
+struct VirtualReturn {
+  float dir_x = 1, dir_y = 0;  // unit vector towards it
+  float range_m = 0;           // 0 when inside the box: dir points away from the nearest way out
+};
+
 class ApproachLimiter {
  public:
   static constexpr uint8_t kMaxCuts = 12;
-  static constexpr std::size_t kMaxBlind = 72;  // directions sampled in the blind arc
+  static constexpr std::size_t kMaxBlind = 72;    // directions sampled in the blind arc
+  static constexpr std::size_t kMaxVirtual = 4;   // virtual returns per call (keep-out boxes)
 
   // kInvalidArgument for parameters that fail ApproachParams::validate or an invalid geometry
   // (the limiter is then off).
@@ -50,11 +59,16 @@ class ApproachLimiter {
 
   // Limits the body-frame command v (m/s) against the scan's returns, beam i along
   // directions.cos/sin[i]. The scan must have the geometry the directions were built for.
-  ApproachResult limit(const LaserScan& scan, const BeamDirections& directions, Eigen::Vector2f& v) const;
+  // The first kMaxVirtual of `virtual_returns` bound it as returns do.
+  ApproachResult limit(const LaserScan& scan, const BeamDirections& directions, Eigen::Vector2f& v,
+                       std::span<const VirtualReturn> virtual_returns = {}) const;
 
  private:
-  void scale_to_bounds(const LaserScan& scan, const BeamDirections& directions, int64_t& vx, int64_t& vy,
-                       ApproachResult& out) const;
+  struct Virtual {
+    int64_t c = 0, s = 0, bound = 0;  // Q14 direction, bound in mm/s
+  };
+  void scale_to_bounds(const LaserScan& scan, const BeamDirections& directions, std::span<const Virtual> extra,
+                       int64_t& vx, int64_t& vy, ApproachResult& out) const;
 
   int32_t stop_mm_ = 0;
   int32_t gain_q8_ = 0;  // 1/s in Q8: bound (mm/s) = (gain_q8 * (r - stop)) >> 8

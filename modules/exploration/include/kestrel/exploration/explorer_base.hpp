@@ -38,7 +38,7 @@ class ExplorerBase : public Explorer {
  private:
   void hold(const NavState& nav, TimeUs now, GuidanceSetpoint& out) const;
   // The approach limiter on a world-frame command, recorded in the status.
-  Eigen::Vector2f limit_approach(const LaserScan& scan, float heading_rad, const Eigen::Vector2f& v);
+  Eigen::Vector2f limit_approach(const LaserScan& scan, const Pose2& pose, const Eigen::Vector2f& v);
 
   ApproachLimiter approach_;
   YawRateLimiter yaw_;
