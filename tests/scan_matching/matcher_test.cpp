@@ -278,6 +278,54 @@ TEST(ScanMatcher, FewScoredPointsAreLostNotConfident) {
   EXPECT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, room, 1081, 4.712f, at(2))).ok());
 }
 
+// Lost for longer than restart_after_lost_s (the vehicle crossed to a place the map's key
+// scans never saw, as a 4 m laser does crossing a room): the map restarts at the prediction,
+// and the next scan measures the motion from there instead of staying lost for good.
+TEST(ScanMatcher, LostTooLongRestartsTheMapAtThePrediction) {
+  const std::vector<test::Wall> elsewhere{{-1, -1, 4, -1}, {4, -1, -1, 3}, {-1, 3, -1, -1}};
+  PosePrior prior;
+  prior.position_std_m = 0.02f;
+  prior.heading_std_rad = 0.01f;
+  for (const float restart_s : {0.0f, 0.5f}) {
+    Params p;
+    p.restart_after_lost_s = restart_s;
+    Rig r(p);
+    ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(0))).ok());
+    int lost = 0, restarts = 0;
+    for (int i = 1; i <= 30; ++i) {
+      const ScanMatch s = r.m->process(test::cast_scan({0, 0, 0}, elsewhere, 1081, 4.712f, at(i)), &prior);
+      ASSERT_TRUE(s.ok());
+      lost += (s.measurement.flags & match_flag::kLost) != 0;
+      if ((s.measurement.flags & match_flag::kMapRestarted) != 0) {
+        ++restarts;
+        EXPECT_EQ(i, 20) << "0.5 s of 25 ms scans after the last fit";
+        EXPECT_NE(s.measurement.flags & match_flag::kKeyScan, 0u);
+        EXPECT_GE(s.measurement.covariance(0, 0), 1e3f);  // the restart itself measures nothing
+        break;
+      }
+    }
+    prior.pose = {0.05f, 0, 0};  // the filter's guess; the vehicle flew 0.1 m
+    const ScanMatch next = r.m->process(test::cast_scan({0.1f, 0, 0}, elsewhere, 1081, 4.712f, at(31)), &prior);
+    prior.pose = {};
+    if (restart_s == 0.0f) {
+      EXPECT_EQ(restarts, 0);
+      EXPECT_EQ(lost, 30);
+      EXPECT_NE(next.measurement.flags & match_flag::kLost, 0u);
+    } else {
+      EXPECT_EQ(restarts, 1);
+      EXPECT_EQ(lost, 20);
+      EXPECT_EQ(next.measurement.flags & match_flag::kLost, 0u);
+      EXPECT_NEAR(next.measurement.pose.x, 0.1f, 0.01f);
+      EXPECT_NEAR(next.measurement.pose.y, 0.0f, 0.01f);
+      EXPECT_LT(next.measurement.covariance(0, 0), 1e-3f);
+    }
+  }
+  Params bad;
+  bad.restart_after_lost_s = std::numeric_limits<float>::quiet_NaN();
+  Rig r;
+  EXPECT_EQ(r.m->configure(bad), Status::kInvalidArgument);
+}
+
 // A configuration whose points cannot be held as int16 cells (the search's transform) is
 // refused at configure(), not found out scan by scan.
 TEST(ScanMatcher, RefusesARangeBeyondTheSearchsCells) {

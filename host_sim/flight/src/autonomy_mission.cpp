@@ -281,6 +281,8 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("scans_rejected", c.scans_rejected);
   out.emplace_back("poses_gated", c.poses_gated);
   out.emplace_back("map_rebuilds", c.map_rebuilds);
+  out.emplace_back("scans_lost", c.scans_lost);
+  out.emplace_back("map_restarts", c.map_restarts);
   out.emplace_back("setpoints_sent", c.setpoints_sent);
   out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
   out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);

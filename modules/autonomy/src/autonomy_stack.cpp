@@ -152,6 +152,8 @@ void AutonomyStack::scan_task() {
     return;
   }
   ++counters_.scans_matched;
+  if ((last_match_.measurement.flags & scan_matching::match_flag::kLost) != 0) ++counters_.scans_lost;
+  if ((last_match_.measurement.flags & scan_matching::match_flag::kMapRestarted) != 0) ++counters_.map_restarts;
   PoseMeasurement2 m = last_match_.measurement;
   if (!config_.use_measurement_time) m.stamp = dev_.clock.now();
   if (filter_.update_pose(m) == Status::kRejected) ++counters_.poses_gated;

@@ -44,6 +44,7 @@ Status LocalMap::rebuild() {
   while (queue_.pop(incoming_)) {
     const KeyScan& in = incoming_;
     const std::size_t k = params_.keyframes;
+    if (in.restart) count_ = head_ = 0;
     const std::size_t slot = count_ < k ? (head_ + count_) % k : head_;
     if (count_ < k) {
       ++count_;

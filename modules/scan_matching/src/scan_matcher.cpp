@@ -17,7 +17,8 @@ ScanMatcher::ScanMatcher(const Params& p, LikelihoodMap& a, LikelihoodMap& b, bo
 }
 
 Status ScanMatcher::configure(const Params& p, const Pose2& initial) {
-  if (!(p.angle_step_rad > 0) || !(p.max_range_m > p.min_range_m) || !initial.finite()) {
+  if (!(p.angle_step_rad > 0) || !(p.max_range_m > p.min_range_m) || !initial.finite() ||
+      !(p.restart_after_lost_s >= 0)) {
     return Status::kInvalidArgument;
   }
   // The search holds points as int16 cells (CorrelativeSearch::setup).
@@ -95,11 +96,12 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   if (!started_) {
     // The first scan defines the map frame at the initial pose.
     key_.pose = initial_;
+    key_.restart = false;
     (void)local_.submit(key_);
     if (synchronous_) (void)local_.rebuild();
     started_ = true;
     last_pose_ = prev_pose_ = initial_;
-    last_stamp_ = prev_stamp_ = scan.stamp;
+    last_stamp_ = prev_stamp_ = last_fit_stamp_ = scan.stamp;
     accepted_ = 1;
     m.pose = initial_;
     m.covariance = Eigen::Matrix3f::Identity() * 1e-6f;
@@ -233,6 +235,17 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     local_.release();
     m.pose = pred;
     m.flags |= kLost;
+    if (params_.restart_after_lost_s > 0 &&
+        (scan.stamp - last_fit_stamp_).seconds() >= static_cast<double>(params_.restart_after_lost_s)) {
+      key_.pose = pred;
+      key_.restart = true;
+      if (local_.submit(key_)) {
+        m.flags |= kKeyScan | kMapRestarted;
+        last_fit_stamp_ = scan.stamp;  // the rebuilt map gets as long again to fit
+        if (synchronous_) (void)local_.rebuild();
+      }
+      key_.restart = false;
+    }
     prev_pose_ = last_pose_;
     prev_stamp_ = last_stamp_;
     last_pose_ = pred;
@@ -303,6 +316,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   out.major_axis_rad = ce.major_axis_rad;
   out.axis_ratio = ce.axis_ratio;
 
+  last_fit_stamp_ = scan.stamp;
   if (out.overlap < params_.min_overlap || off_centre) {
     key_.pose = pose;
     if (local_.submit(key_)) m.flags |= kKeyScan;

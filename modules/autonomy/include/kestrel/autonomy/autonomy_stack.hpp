@@ -55,6 +55,8 @@ struct StackCounters {
   uint32_t setpoints_sent = 0;
   uint32_t autopilot_errors = 0;
   uint32_t map_rebuilds = 0;
+  uint32_t scans_lost = 0;           // matched nothing: the pose is the filter's prediction
+  uint32_t map_restarts = 0;         // lost too long: the local map started again
   uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
 };
 

@@ -23,6 +23,7 @@ inline constexpr std::size_t kMaxKeyframes = 8;
 struct KeyScan {
   Pose2 pose;  // world pose of the sensor when the scan was taken
   ScanPoints points;
+  bool restart = false;  // drop every older key scan: the map starts again from this one
 };
 
 class LocalMap {

@@ -43,6 +43,13 @@ struct Params {
   // between scans (intel turns 30 degrees between scans stamped 0.01 s apart).
   bool velocity_per_scan = false;
   float min_score = 0.15f;          // mean cell value / kCellMax below this: match is lost
+  // A lost match never comes back by itself once the vehicle has left the map's reach: the
+  // window stays within max_window_m of a prediction whose error keeps growing, against key
+  // scans of a place the laser no longer sees (a 4 m URG-04LX crossing a room). After this
+  // long without a fit, a scan that still has min_points restarts the local map at the
+  // prediction: the absolute error so far stays, but the next scans measure the motion again
+  // instead of leaving the filter on the IMU alone. 0: never restart.
+  float restart_after_lost_s = 0.5f;
   // Weak motion prior, used only without a caller's prior (PosePrior): a box around the
   // constant-velocity prediction, within which a pose wins unless one outside scores more than
   // `cv_tie_fraction` better. Along a corridor whose end is out of range the score is flat

@@ -30,6 +30,7 @@ inline constexpr uint32_t kDegenerate = 1u << 6;     // long thin translation el
 inline constexpr uint32_t kKeyScan = 1u << 7;        // the scan was submitted to the local map
 inline constexpr uint32_t kFirstScan = 1u << 8;      // started the map; pose is the initial pose
 inline constexpr uint32_t kWindowClamped = 1u << 9;  // the window hit its static capacity
+inline constexpr uint32_t kMapRestarted = 1u << 10;  // lost too long: the map restarts here
 }  // namespace match_flag
 
 struct ScanMatch {
@@ -88,6 +89,7 @@ class ScanMatcher {
   Pose2 initial_;
   Pose2 last_pose_, prev_pose_;
   TimeUs last_stamp_, prev_stamp_;
+  TimeUs last_fit_stamp_;  // newest scan that fitted the map, started it or restarted it
   int accepted_ = 0;
   bool started_ = false;
 };
