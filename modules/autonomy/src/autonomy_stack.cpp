@@ -196,11 +196,10 @@ void AutonomyStack::bound_return_setpoint(TimeUs now) {
   if (newest_scan_fresh_) {
     newest_scan_fresh_ = false;
     if (explorer_->bound_velocity(nav_, newest_scan_, setpoint_) != Status::kOk) ++counters_.guidance_rejected;
-    return_velocity_ = setpoint_.velocity_mps;
+    return_velocity_ = setpoint_.velocity_mps.head<2>();
     return;
   }
-  setpoint_.velocity_mps.x() = return_velocity_.x();
-  setpoint_.velocity_mps.y() = return_velocity_.y();
+  setpoint_.velocity_mps.head<2>() = return_velocity_;
 }
 
 void AutonomyStack::control_task(TimeUs now) {

@@ -125,7 +125,7 @@ class AutonomyStack {
   bool guidance_scan_fresh_ = false;
   LaserScan newest_scan_;      // the newest scan, matched or not: the flight home's limiter
   bool newest_scan_fresh_ = false;
-  Eigen::Vector3f return_velocity_ = Eigen::Vector3f::Zero();  // bounded on the newest scan
+  Eigen::Vector2f return_velocity_ = Eigen::Vector2f::Zero();  // horizontal, bounded on the newest scan
   mission::ExplorerOutput explorer_out_;  // the explorer's newest set-point
   scan_matching::ScanMatch last_match_;
   bool new_match_ = false;
