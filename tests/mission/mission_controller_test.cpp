@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/core/angle.hpp"
@@ -53,6 +54,25 @@ struct MissionRun {
       if (mc.phase() == p) return true;
     }
     return false;
+  }
+  struct Leg {
+    Eigen::Vector3f velocity_mps;
+    int steps;
+  };
+  // An explore mission that takes off, flies the explorer's legs at velocity set-points, and
+  // is told exploring has finished. False unless it is then on its way home.
+  bool explore_then_finish(const MissionParams& p, ExplorerOutput& e, std::initializer_list<Leg> legs) {
+    if (mc.configure(MissionKind::kExplore, p) != Status::kOk) return false;
+    e = ExplorerOutput{};
+    e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
+    if (!run_until(Phase::kExplore, 10, &e)) return false;
+    for (const Leg& leg : legs) {
+      e.setpoint.velocity_mps = leg.velocity_mps;
+      for (int i = 0; i < leg.steps; ++i) step(&e);
+    }
+    e.finished = true;
+    step(&e);
+    return mc.phase() == Phase::kReturn;
   }
 };
 
@@ -119,20 +139,11 @@ TEST(MissionController, WaypointsAreVisitedInOrderWithHolds) {
 TEST(MissionController, ExploreThenReturnsAlongTheTrailAndLandsAtHome) {
   MissionRun r;
   MissionParams p;
-  ASSERT_EQ(r.mc.configure(MissionKind::kExplore, p), Status::kOk);
   ExplorerOutput e;
-  e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
-  ASSERT_TRUE(r.run_until(Phase::kExplore, 10, &e));
   // Explore an L: +x for 4 s then +y for 3 s, at 0.5 m/s.
-  e.setpoint.velocity_mps = {0.5f, 0, 0};
-  for (int i = 0; i < 160; ++i) r.step(&e);
-  e.setpoint.velocity_mps = {0, 0.5f, 0};
-  for (int i = 0; i < 120; ++i) r.step(&e);
+  ASSERT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 160}, {{0, 0.5f, 0}, 120}}));
   EXPECT_NEAR(r.v.nav.position_m.x(), 3.0f, 0.2f);
   EXPECT_NEAR(r.v.nav.position_m.y(), 3.5f, 0.2f);
-  e.finished = true;
-  r.step(&e);
-  EXPECT_EQ(r.mc.phase(), Phase::kReturn);
   // On the way home it must pass the corner of the L, never cut across it.
   bool passed_corner = false;
   float heading = r.v.nav.heading_rad;
@@ -165,15 +176,8 @@ TEST(MissionController, BlockedWayHomeLandsWhereItIs) {
   MissionRun r;
   MissionParams p;
   p.return_stall_s = 5.0f;
-  ASSERT_EQ(r.mc.configure(MissionKind::kExplore, p), Status::kOk);
   ExplorerOutput e;
-  e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
-  ASSERT_TRUE(r.run_until(Phase::kExplore, 10, &e));
-  e.setpoint.velocity_mps = {0.5f, 0, 0};
-  for (int i = 0; i < 160; ++i) r.step(&e);
-  e.finished = true;
-  r.step(&e);
-  ASSERT_EQ(r.mc.phase(), Phase::kReturn);
+  ASSERT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 160}}));
   // A wall the trail now runs through (the estimate drifted): the vehicle cannot move.
   r.v.speed = 0.0f;
   const Eigen::Vector3f stuck = r.v.nav.position_m;
@@ -186,12 +190,7 @@ TEST(MissionController, BlockedWayHomeLandsWhereItIs) {
   EXPECT_FALSE(r.mc.returned_home());
   // Slow progress is still progress: a vehicle creeping home is not landed short.
   MissionRun slow;
-  ASSERT_EQ(slow.mc.configure(MissionKind::kExplore, p), Status::kOk);
-  e.finished = false;
-  ASSERT_TRUE(slow.run_until(Phase::kExplore, 10, &e));
-  for (int i = 0; i < 400; ++i) slow.step(&e);
-  e.finished = true;
-  slow.step(&e);
+  ASSERT_TRUE(slow.explore_then_finish(p, e, {{{0.5f, 0, 0}, 400}}));
   slow.v.speed = 0.05f;
   ASSERT_TRUE(slow.run_until(Phase::kLand, 120, &e));
   EXPECT_TRUE(slow.mc.returned_home());
