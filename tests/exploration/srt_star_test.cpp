@@ -278,6 +278,63 @@ TEST(SrtStarPlanner, HeldOffItsWaypointNearbyTheVehicleHasArrived) {
   // Held beyond blocked_arrival_distance_m it is the time limit's case (above), not this.
 }
 
+// Backtracking, the vehicle arrives beside its node with the straight way to the parent
+// blocked, so it first closes in on the node; a wall then holds it off the node. Unguarded
+// (SRT alone, position set-points), the path check stands and the same node is issued again;
+// guarded by the approach limiter, it leaves straight for the parent from where it is held.
+TEST(SrtStarPlanner, HeldOffItsNodeAGuardedBacktrackLeavesForTheParent) {
+  for (const bool guarded : {false, true}) {
+    auto planner = std::make_unique<SrtStarPlanner>();
+    SrtParams srt = one_shot();
+    srt.max_attempts_per_frontier = 1;  // a frontier is spent on its first child
+    const GuidanceParams g;
+    ASSERT_EQ(planner->configure(srt, g, guarded), Status::kOk);
+    bool fresh = false;
+    const LaserScan enclosed = uniform_scan(kUrg, 1000);
+    ASSERT_EQ(planner->update({0, 0, 0}, opening_scan(35), TimeUs{}, fresh), Status::kOk);
+    const Point2 w1 = planner->waypoint();
+    ASSERT_EQ(planner->update({w1.x, w1.y, 0}, opening_scan(35), TimeUs::from_s(1.0), fresh), Status::kOk);
+    const uint16_t node1 = planner->current_node();
+    // Node 1's frontiers each lead into a dead end and back onto node 1, until the last.
+    double t = 2.0;
+    for (int child = 0;; ++child) {
+      ASSERT_LT(child, 40);
+      ASSERT_EQ(planner->mode(), PlannerMode::kForward);
+      const Point2 w = planner->waypoint();
+      ASSERT_EQ(planner->update({w.x, w.y, 0}, enclosed, TimeUs::from_s(t++), fresh), Status::kOk);
+      ASSERT_EQ(planner->mode(), PlannerMode::kBacktrack);
+      ASSERT_EQ(planner->target_node(), node1);
+      if (planner->tree().frontier_count_of(node1) == 0) break;
+      ASSERT_EQ(planner->update({w1.x, w1.y, 0}, opening_scan(35), TimeUs::from_s(t++), fresh), Status::kOk);
+    }
+    // Arrived 0.25 m beside node 1 (within d, beyond d / 2), walls at 1 m all round: the way
+    // to the root is blocked, so it closes in on node 1 first.
+    const Pose2 beside{w1.x, w1.y + 0.25f, 0};
+    ASSERT_EQ(planner->update(beside, enclosed, TimeUs::from_s(t), fresh), Status::kOk);
+    ASSERT_TRUE(fresh);
+    ASSERT_EQ(planner->target_node(), node1);
+    EXPECT_FLOAT_EQ(planner->waypoint().x, w1.x);
+    EXPECT_FLOAT_EQ(planner->waypoint().y, w1.y);
+    // Held there for longer than blocked_time_s.
+    ASSERT_EQ(planner->update(beside, enclosed, TimeUs::from_s(t + 0.5), fresh), Status::kOk);
+    EXPECT_FALSE(fresh);
+    ASSERT_EQ(planner->update(beside, enclosed, TimeUs::from_s(t + 0.6 + g.blocked_time_s), fresh), Status::kOk);
+    EXPECT_TRUE(fresh) << guarded;
+    EXPECT_EQ(planner->blocked_arrivals(), 1u);
+    EXPECT_EQ(planner->mode(), PlannerMode::kBacktrack);
+    if (guarded) {
+      EXPECT_EQ(planner->target_node(), 0);
+      EXPECT_FLOAT_EQ(planner->waypoint().x, 0.0f);
+      EXPECT_FLOAT_EQ(planner->waypoint().y, 0.0f);
+    } else {
+      EXPECT_EQ(planner->target_node(), node1);  // the same node again
+      EXPECT_FLOAT_EQ(planner->waypoint().x, w1.x);
+      EXPECT_FLOAT_EQ(planner->waypoint().y, w1.y);
+    }
+    EXPECT_EQ(planner->restarts(), 0u);
+  }
+}
+
 TEST(SrtStarPlanner, FullTreeRestartsExploration) {
   auto planner = std::make_unique<SrtStarPlanner>();
   ASSERT_EQ(planner->configure({}, {}), Status::kOk);
