@@ -101,16 +101,19 @@ TEST(ScanMatcher, VelocityPerScanIgnoresTheStamps) {
   }
 }
 
-// The weak motion prior (Params::cv_box_m) in a corridor whose far end is out of range: the
-// vehicle backs away from the end wall behind it at 0.3 m per scan; from the 16th scan that
-// wall is beyond the 6 m range, only the side walls are seen, and the scan's wall points
-// beyond what the last key scan saw (its own 6 m) pull the optimum back onto it. Without the prior the estimate falls
-// back at once (4.5 m -> 3.2 m); with it, the next two scans keep the motion. Further on the
-// pull exceeds the prior's 10 % and the estimate slows down too: the prior breaks near-ties,
-// it is no substitute for a filter's motion model (README: what remains).
-TEST(ScanMatcher, MotionPriorBreaksCorridorTies) {
+// A corridor whose far end is out of range: the vehicle backs away from the end wall behind
+// it at 0.3 m per scan; from the 16th scan that wall is beyond the 6 m range and only the
+// side walls are seen. Scoring the scan's wall points beyond what the key scans saw (their
+// own 6 m: nothing drawn there, zero) pulls the optimum back towards them: the estimate falls
+// back at once (4.5 m -> 3.2 m). The weak motion prior (Params::cv_box_m) breaks such
+// near-ties for the next two scans; scoring only the points within some key scan's reach
+// (Params::key_spacing_of_reach, the default) removes the pull itself.
+TEST(ScanMatcher, CorridorPastTheKeyScansReachDoesNotPullTheMatchBack) {
   const std::vector<test::Wall> corridor{{-2, -1, 40, -1}, {-2, 1, 40, 1}, {-2, -1, -2, 1}};
-  for (const bool with_prior : {false, true}) {
+  struct Case {
+    bool motion_prior, key_reach;
+  };
+  for (const Case c : {Case{false, false}, Case{true, false}, Case{false, true}}) {
     Params p;
     p.resolution_m = 0.02f;
     p.sigma_m = 0.03f;
@@ -118,22 +121,29 @@ TEST(ScanMatcher, MotionPriorBreaksCorridorTies) {
     p.velocity_per_scan = true;
     p.min_window_m = 1.0f;
     p.max_window_m = 1.6f;
-    p.cv_box_m = with_prior ? 0.1f : 0.0f;
-    p.cv_box_rad = with_prior ? 0.05f : 0.0f;
+    p.cv_box_m = c.motion_prior ? 0.1f : 0.0f;
+    p.cv_box_rad = c.motion_prior ? 0.05f : 0.0f;
+    p.key_spacing_of_reach = c.key_reach ? 0.3f : 0.0f;
     Rig r(p);
     float worst_before = 0, worst_after = 0;
+    int keys = 0;
     for (int i = 0; i <= 16; ++i) {
       const float x = -1 + 0.3f * static_cast<float>(i);
       const ScanMatch s = r.m->process(test::cast_scan({x, 0, 0}, corridor, 721, 6.2f, at(i)));
       ASSERT_TRUE(s.ok()) << i;
+      keys += i > 0 && (s.measurement.flags & match_flag::kKeyScan) != 0;
       const float e = std::fabs(s.measurement.pose.x - (x + 1));
       (i < 15 ? worst_before : worst_after) = std::max(i < 15 ? worst_before : worst_after, e);
     }
-    EXPECT_LT(worst_before, 0.03f) << with_prior;  // the end wall in view: both track
-    if (with_prior) {
-      EXPECT_LT(worst_after, 0.05f);
+    EXPECT_LT(worst_before, 0.03f) << c.motion_prior << c.key_reach;  // the end wall in view: all track
+    // 4.8 m flown: a key scan every 0.3 x 6 m at the latest.
+    if (c.key_reach) {
+      EXPECT_GE(keys, 2);
+    }
+    if (c.motion_prior || c.key_reach) {
+      EXPECT_LT(worst_after, 0.05f) << c.motion_prior << c.key_reach;
     } else {
-      EXPECT_GT(worst_after, 0.5f);  // the failure the prior is there for
+      EXPECT_GT(worst_after, 0.5f);  // the pull
     }
   }
 }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <memory>
@@ -188,6 +189,45 @@ TEST(CorrelativeSearch, CorridorPastTheMapEdgeIsNotDraggedTowardsTheKeyScan) {
     EXPECT_LE(std::abs(back - here), here / 200) << ahead;
     EXPECT_LE(std::abs(on - here), here / 200) << ahead;
   }
+  f.local->release();
+}
+
+// Only the points inside a key scan's disc under every translation are scored: the disc less
+// the window and slice reach. A disc that holds every point changes nothing; a bad centre is
+// refused, and a disc smaller than the search's reach scores nothing.
+TEST(CorrelativeSearch, OnlyPointsWithinAKeyScansReachAreScored) {
+  Fixture f(0.02f);
+  const auto pts = test::to_points(test::cast_scan({0, 0, 0}, test::room(), 361));
+  const LikelihoodMap* m = f.local->acquire();
+  ASSERT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 10, 2, 0.0044f, 5), Status::kOk);
+  const int all = f.search->scored_points(0);
+  const GridPose plain = f.search->branch_and_bound();
+  SeenDiscs seen;
+  seen.count = 1;
+  seen.radius_m = 10.0f;  // the whole 6 x 4 m room
+  ASSERT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 10, 2, 0.0044f, 5, 0, &seen), Status::kOk);
+  EXPECT_EQ(f.search->scored_points(0), all);
+  const GridPose same = f.search->branch_and_bound();
+  EXPECT_EQ(same.score, plain.score);
+  EXPECT_EQ(same.tx, plain.tx);
+  EXPECT_EQ(same.ty, plain.ty);
+  // A disc of 2.3 m around (0, 0), less the 15 cells (0.3 m) of reach: the points within 2 m.
+  seen.radius_m = 2.3f;
+  ASSERT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 10, 2, 0.0044f, 5, 0, &seen), Status::kOk);
+  int within = 0;
+  for (uint16_t i = 0; i < pts.count; ++i) within += std::hypot(pts.x[i], pts.y[i]) <= 2.0f;
+  EXPECT_NEAR(f.search->scored_points(0), within, 3);  // cell rounding at the rim
+  EXPECT_LT(within, all);
+  // The second disc, further on, adds what lies within its reach.
+  seen.count = 2;
+  seen.x[1] = 2.5f;
+  ASSERT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 10, 2, 0.0044f, 5, 0, &seen), Status::kOk);
+  EXPECT_GT(f.search->scored_points(0), within);
+  seen.radius_m = 0.2f;  // inside the search's own reach
+  ASSERT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 10, 2, 0.0044f, 5, 0, &seen), Status::kOk);
+  EXPECT_EQ(f.search->scored_points(0), 0);
+  seen.x[0] = NAN;
+  EXPECT_EQ(f.search->setup(pts, {0, 0, 0}, *m, 10, 2, 0.0044f, 5, 0, &seen), Status::kInvalidArgument);
   f.local->release();
 }
 

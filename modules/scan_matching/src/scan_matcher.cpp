@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kestrel::scan_matching {
 namespace {
@@ -29,6 +30,7 @@ Status ScanMatcher::configure(const Params& p, const Pose2& initial) {
   initial_ = initial;
   started_ = false;
   accepted_ = 0;
+  key_pose_count_ = 0;
   return Status::kOk;
 }
 
@@ -69,6 +71,30 @@ bool ScanMatcher::to_points(const LaserScan& scan) {
   return pts.count >= std::max<uint16_t>(params_.min_points, 2);
 }
 
+float ScanMatcher::laser_reach_m(const LaserScan& scan) const {
+  const float sensor = scan.max_range_mm > 0 ? static_cast<float>(scan.max_range_mm) * 1e-3f : params_.max_range_m;
+  return std::min(params_.max_range_m, sensor);
+}
+
+void ScanMatcher::remember_key(const Pose2& pose, bool restart) {
+  if (restart) key_pose_count_ = 0;
+  const std::size_t k = std::clamp<std::size_t>(params_.keyframes, 1, kMaxKeyframes);
+  if (key_pose_count_ < k) {
+    key_poses_[key_pose_count_++] = pose;
+  } else {
+    for (std::size_t i = 1; i < k; ++i) key_poses_[i - 1] = key_poses_[i];
+    key_poses_[k - 1] = pose;
+  }
+}
+
+float ScanMatcher::distance_to_nearest_key(const Pose2& p) const {
+  float best = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < key_pose_count_; ++i) {
+    best = std::min(best, std::hypot(p.x - key_poses_[i].x, p.y - key_poses_[i].y));
+  }
+  return best;
+}
+
 ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in) {
   using namespace match_flag;
   ScanMatch out;
@@ -98,6 +124,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     key_.pose = initial_;
     key_.restart = false;
     (void)local_.submit(key_);
+    remember_key(initial_, true);
     if (synchronous_) (void)local_.rebuild();
     started_ = true;
     last_pose_ = prev_pose_ = initial_;
@@ -166,6 +193,20 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   if (half_cells > cap_cells || half_steps > kMaxThetaSteps) m.flags |= kWindowClamped;
   half_cells = std::clamp(half_cells, 1, cap_cells);
   half_steps = std::clamp(half_steps, 0, kMaxThetaSteps);
+  // The covariance's slices reach cov_half_window cells beyond the optimum (and the rotation
+  // curve's two): the search scores the points that stay inside the map over all of it.
+  const int slice_half = std::clamp<int>(params_.cov_half_window, 2, kMaxExhaustiveWindow);
+  const float reach = laser_reach_m(scan);
+  SeenDiscs seen;
+  if (params_.key_spacing_of_reach > 0) {
+    seen.radius_m = reach;
+    seen.count = key_pose_count_;
+    for (std::size_t i = 0; i < key_pose_count_; ++i) {  // newest first: most points are in it
+      seen.x[i] = key_poses_[key_pose_count_ - 1 - i].x;
+      seen.y[i] = key_poses_[key_pose_count_ - 1 - i].y;
+    }
+  }
+  const SeenDiscs* seen_ptr = seen.count > 0 ? &seen : nullptr;
 
   // The motion prior's box around the constant-velocity prediction (Params::cv_box_m), in
   // cells and steps of the window's grid.
@@ -177,7 +218,8 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   const auto search_around = [&](int hx, int hy, int hk, int cells, int steps) {
     const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
                   wrap_angle(pred.theta + static_cast<float>(hk) * params_.angle_step_rad)};
-    if (!ok(search_.setup(key_.points, c, *map, cells, steps, params_.angle_step_rad, 0, params_.max_range_m))) {
+    if (!ok(search_.setup(key_.points, c, *map, cells, steps, params_.angle_step_rad, 0, params_.max_range_m,
+                          seen_ptr))) {
       return GridPose{};  // score -1: no seed
     }
     const GridPose local = params_.multi_resolution ? search_.branch_and_bound() : search_.exhaustive();
@@ -201,11 +243,8 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     in_box = search_around(cvx, cvy, cvk, box_cells, std::min(half_steps, box_steps));
     if (params_.multi_resolution) seeds[static_cast<std::size_t>(seed_count++)] = in_box;
   }
-  // The covariance's slices reach cov_half_window cells beyond the optimum (and the rotation
-  // curve's two): the search scores the points that stay inside the map over all of it.
-  const int slice_half = std::clamp<int>(params_.cov_half_window, 2, kMaxExhaustiveWindow);
   if (!ok(search_.setup(key_.points, pred, *map, half_cells, half_steps, params_.angle_step_rad, slice_half,
-                        params_.max_range_m))) {
+                        params_.max_range_m, seen_ptr))) {
     // Only a prediction thousands of kilometres from the map gets here (configure() has
     // checked the rest): nothing to match against.
     local_.release();
@@ -241,6 +280,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
       key_.restart = true;
       if (local_.submit(key_)) {
         m.flags |= kKeyScan | kMapRestarted;
+        remember_key(pred, true);
         last_fit_stamp_ = scan.stamp;  // the rebuilt map gets as long again to fit
         if (synchronous_) (void)local_.rebuild();
       }
@@ -301,6 +341,8 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   const float span = static_cast<float>(map->dim()) * res;
   const float off_x = bx - (map->origin_x_m() + 0.5f * span), off_y = by - (map->origin_y_m() + 0.5f * span);
   const bool off_centre = std::fabs(off_x) > 0.25f * span || std::fabs(off_y) > 0.25f * span;
+  const bool far_from_keys = params_.key_spacing_of_reach > 0 &&
+                             distance_to_nearest_key(Pose2{bx, by, 0}) > params_.key_spacing_of_reach * reach;
   local_.release();
   out.overlap = inside > 0 ? static_cast<float>(fit) / static_cast<float>(inside) : 0.0f;
 
@@ -317,9 +359,13 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   out.axis_ratio = ce.axis_ratio;
 
   last_fit_stamp_ = scan.stamp;
-  if (out.overlap < params_.min_overlap || off_centre) {
+  if (out.overlap < params_.min_overlap || off_centre || far_from_keys) {
     key_.pose = pose;
-    if (local_.submit(key_)) m.flags |= kKeyScan;
+    key_.restart = false;
+    if (local_.submit(key_)) {
+      m.flags |= kKeyScan;
+      remember_key(pose, false);
+    }
     if (synchronous_) (void)local_.rebuild();
   }
   prev_pose_ = last_pose_;

@@ -38,6 +38,15 @@ inline constexpr int kMaxExhaustiveWindow = 64; // translation half-window of th
 // it descends to single poses.
 inline constexpr int kLeafLevel = kRowLanes == 8 ? 3 : 0;
 
+// Where the map's key scans could see: discs of the laser's reach around their poses (world
+// frame). A point outside all of them scores zero whatever is there.
+inline constexpr std::size_t kMaxSeenDiscs = 8;
+struct SeenDiscs {
+  std::array<float, kMaxSeenDiscs> x{}, y{};
+  std::size_t count = 0;
+  float radius_m = 0;
+};
+
 // A pose on the search grid: theta = centre + k * step, translation = centre + (tx, ty) cells.
 struct GridPose {
   int32_t k = 0, tx = 0, ty = 0;
@@ -55,8 +64,11 @@ class CorrelativeSearch {
   // finite, or it (or max_range_m) is more than 32,000 cells from the sensor (int16 cells;
   // 240 m at 7.5 mm).
   // max_range_m (optional) fixes the points' precision for every scan of that sensor.
+  // seen (optional): a rotation also scores only the points that stay inside one of these
+  // discs under every translation (see rotate()).
   Status setup(const ScanPoints& pts, const Pose2& centre, const LikelihoodMap& map,
-               int half_cells, int half_steps, float step_rad, int slice_half = 0, float max_range_m = 0);
+               int half_cells, int half_steps, float step_rad, int slice_half = 0, float max_range_m = 0,
+               const SeenDiscs* seen = nullptr);
 
   GridPose exhaustive();
   // Seeds are poses of this window (e.g. the optima of small searches around each motion
@@ -116,6 +128,7 @@ class CorrelativeSearch {
   int32_t exact(int tx, int ty) const;  // score of a translation at the current rotation
   void accumulate(int x0, int y0, int w);
   void dfs(int k, int32_t root_bound, GridPose& best);
+  bool seen_by_a_key_scan(int32_t x, int32_t y) const;
   static bool better(const GridPose& a, const GridPose& b);
 
   const LikelihoodMap* map_ = nullptr;
@@ -125,6 +138,9 @@ class CorrelativeSearch {
   std::array<uint16_t, kMaxPoints> clipped_{};  // image addition: points whose window crosses the map's edge
   uint16_t n_ = 0;   // points of the scan
   uint16_t nq_ = 0;  // of them, those the current rotation keeps (qx_, qy_)
+  std::array<int32_t, kMaxSeenDiscs> disc_x_{}, disc_y_{};  // SeenDiscs in map cells
+  std::size_t disc_count_ = 0;                               // 0: no disc test
+  int64_t disc_r2_ = 0;  // squared radius less the search's reach, cells^2 (< 0: nothing seen)
   Pose2 centre_;
   RotationQ rot_;  // window centre in map cells; cos and sin of the current rotation
   float step_rad_ = 0;

@@ -27,6 +27,11 @@ struct Params {
   // --- local map (5.1.1)
   uint8_t keyframes = 5;            // k: scans drawn in the local map (<= kMaxKeyframes)
   float min_overlap = 0.85f;        // a scan joins the map when fewer of its points fit it
+  // ...or when it is farther than this fraction of the laser's reach from every key scan. Only
+  // points within the laser's reach of a key scan are scored (CorrelativeSearch::rotate), so
+  // a 4 m URG-04LX needs key scans every 1.2 m. 0: every point in the map scored, no such
+  // key scans.
+  float key_spacing_of_reach = 0.3f;
   // --- search (5.1.2)
   float angle_step_rad = 0.0026180f;  // 0.15 degree
   float max_accel_mps2 = 4.0f;        // window half-width 0.5 a dt^2, clamped below

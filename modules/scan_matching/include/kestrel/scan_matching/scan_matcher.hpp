@@ -9,6 +9,7 @@
 //
 // Steps per scan: validate -> points -> predict and size the window -> search -> covariance
 // and sub-cell refinement -> overlap test (maybe submit a key scan) -> output.
+#include <array>
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
@@ -72,6 +73,9 @@ class ScanMatcher {
 
  private:
   bool to_points(const LaserScan& scan);
+  float laser_reach_m(const LaserScan& scan) const;
+  void remember_key(const Pose2& pose, bool restart);
+  float distance_to_nearest_key(const Pose2& p) const;
   void update_beam_table(const LaserScan& scan);
 
   Params params_;
@@ -90,6 +94,10 @@ class ScanMatcher {
   Pose2 last_pose_, prev_pose_;
   TimeUs last_stamp_, prev_stamp_;
   TimeUs last_fit_stamp_;  // newest scan that fitted the map, started it or restarted it
+  // Poses of the key scans submitted to the map since it (re)started, oldest first.
+  static_assert(kMaxKeyframes <= kMaxSeenDiscs, "every key scan has its disc");
+  std::array<Pose2, kMaxKeyframes> key_poses_{};
+  std::size_t key_pose_count_ = 0;
   int accepted_ = 0;
   bool started_ = false;
 };
