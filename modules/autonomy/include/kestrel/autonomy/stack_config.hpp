@@ -32,6 +32,13 @@ inline scan_matching::Params vehicle_matcher_params() {
   // standard deviation sizes the rotation window; the default floor (1.15 degrees, meant for
   // a prediction from the last two matches) would only cost time: half the loop's budget.
   p.min_window_rad = 0.01f;
+  // Join grazing-angle wall returns into contours as the CARMEN profile does (up to 8 beam
+  // spacings and 1 m): kept as isolated dots, the far part of a corridor wall is fainter in
+  // the map than the near part, and along a corridor whose ends are out of reach every match
+  // slid back towards the key scans by its whole window (URG-04LX, synthetic corridor: 10 cm
+  // behind on average; joined, 2 cm ahead).
+  p.join_gap_factor = 8.0f;
+  p.join_max_m = 1.0f;
   return p;
 }
 
