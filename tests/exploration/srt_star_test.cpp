@@ -238,6 +238,33 @@ TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
   EXPECT_EQ(planner->waypoint_time(), issued + Duration::from_s(10.1));
 }
 
+// A tree grown after a time-limit restart knows only what it has seen since: when it runs out
+// of frontiers, exploration starts once more from where the vehicle is. A tree that then runs
+// out too has seen all it could from there: finished, with no third tree.
+TEST(SrtStarPlanner, TreeExhaustedAfterARestartStartsOnceMore) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  GuidanceParams g;
+  g.waypoint_time_limit_s = 10.0f;
+  ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
+  const SegmentWorld world = l_corridors();
+  (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);
+  ASSERT_FALSE(planner->finished());
+  const TimeUs issued = planner->waypoint_time();
+  // Stuck where the walls are 1 m away all round (a dead end of another world): the time
+  // limit erases the tree, and the new root has no frontier.
+  const Point2 wp = planner->waypoint();
+  const Pose2 stuck{wp.x - 1.0f, wp.y, 0};
+  const LaserScan enclosed = uniform_scan(kUrg, 1000);
+  bool fresh = false;
+  ASSERT_EQ(planner->update(stuck, enclosed, issued + Duration::from_s(10.1), fresh), Status::kOk);
+  EXPECT_EQ(planner->restarts(), 2u);  // the time limit's, then the exhausted tree's
+  EXPECT_EQ(planner->last_restart_reason(), RestartReason::kExhausted);
+  EXPECT_TRUE(planner->finished());
+  EXPECT_EQ(planner->tree().nodes().size(), 1u);
+  EXPECT_FLOAT_EQ(planner->waypoint().x, stuck.x);
+  // Without a restart before it, an exhausted tree is simply finished (EnclosedRoomFinishesAtOnce).
+}
+
 TEST(SrtStarPlanner, HeldOffItsWaypointNearbyTheVehicleHasArrived) {
   // The approach limiter holds the vehicle 0.6 m short of a waypoint that the estimate's shift
   // put against a wall: after blocked_time_s without coming nearer, it has arrived.

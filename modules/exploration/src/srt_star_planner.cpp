@@ -310,6 +310,15 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
     step_ = Step::kNone;
     return 1;
   }
+  // Section V's restarts erase the tree: a tree grown since knows only the rooms it has seen,
+  // and running out of frontiers says nothing of the rest of the building (gt-building, 30
+  // minutes, UTM-30LX: two of ten flights flew home from the north-east room with four rooms
+  // never entered). It starts once more from here; a tree that then runs out has seen all it
+  // could from where the vehicle was, and exploration is finished.
+  if (last_restart_ == RestartReason::kTimeout || last_restart_ == RestartReason::kTreeFull) {
+    restart_tree(RestartReason::kExhausted);
+    if (start_grow(job_pose_, job_scan_) == Status::kOk) return work::kTableEntry;
+  }
   mode_ = PlannerMode::kFinished;
   target_node_ = kNoNode;
   set_waypoint(node.position, now);

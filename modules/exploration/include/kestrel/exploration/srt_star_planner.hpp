@@ -51,7 +51,9 @@ enum class PlannerMode : uint8_t {
 };
 const char* to_string(PlannerMode m);
 
-enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull };
+// kExhausted: a tree grown after a kTimeout or kTreeFull restart ran out of frontiers; it knew
+// only what it had seen since, so exploration starts once more from where the vehicle is.
+enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull, kExhausted };
 
 class SrtStarPlanner {
  public:
