@@ -142,6 +142,17 @@ SegmentWorld l_corridors() {
   return w;
 }
 
+// A planner (whole arrival steps, the given waypoint time limit) grown over three arrivals from
+// where l_corridors() meet, on its way to its next waypoint.
+std::unique_ptr<SrtStarPlanner> grown_in_l_corridors(float waypoint_time_limit_s) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  GuidanceParams g;
+  g.waypoint_time_limit_s = waypoint_time_limit_s;
+  EXPECT_EQ(planner->configure(one_shot(), g), Status::kOk);
+  (void)teleport(*planner, l_corridors(), {0, 0, static_cast<float>(M_PI / 4)}, 3);
+  return planner;
+}
+
 TEST(SrtStarPlanner, ExploresBothBranchesBacktracksAndFinishesOnTheRoot) {
   auto planner = std::make_unique<SrtStarPlanner>();
   ASSERT_EQ(planner->configure({}, {}), Status::kOk);
@@ -210,12 +221,8 @@ TEST(SrtStarPlanner, EnclosedRoomFinishesAtOnce) {
 }
 
 TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
-  auto planner = std::make_unique<SrtStarPlanner>();
-  GuidanceParams g;
-  g.waypoint_time_limit_s = 10.0f;
-  ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
+  const auto planner = grown_in_l_corridors(10.0f);
   const SegmentWorld world = l_corridors();
-  (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);  // grow a little
   const std::size_t grown = planner->tree().nodes().size();
   ASSERT_GE(grown, 2u);
   ASSERT_FALSE(planner->finished());
@@ -242,12 +249,7 @@ TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
 // of frontiers, exploration starts once more from where the vehicle is. A tree that then runs
 // out too has seen all it could from there: finished, with no third tree.
 TEST(SrtStarPlanner, TreeExhaustedAfterARestartStartsOnceMore) {
-  auto planner = std::make_unique<SrtStarPlanner>();
-  GuidanceParams g;
-  g.waypoint_time_limit_s = 10.0f;
-  ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
-  const SegmentWorld world = l_corridors();
-  (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);
+  const auto planner = grown_in_l_corridors(10.0f);
   ASSERT_FALSE(planner->finished());
   const TimeUs issued = planner->waypoint_time();
   // Stuck where the walls are 1 m away all round (a dead end of another world): the time
@@ -268,12 +270,9 @@ TEST(SrtStarPlanner, TreeExhaustedAfterARestartStartsOnceMore) {
 TEST(SrtStarPlanner, HeldOffItsWaypointNearbyTheVehicleHasArrived) {
   // The approach limiter holds the vehicle 0.6 m short of a waypoint that the estimate's shift
   // put against a wall: after blocked_time_s without coming nearer, it has arrived.
-  auto planner = std::make_unique<SrtStarPlanner>();
-  GuidanceParams g;
-  g.waypoint_time_limit_s = 30.0f;
-  ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
+  const auto planner = grown_in_l_corridors(30.0f);
   const SegmentWorld world = l_corridors();
-  (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);
+  const GuidanceParams g;  // blocked_time_s
   const std::size_t grown = planner->tree().nodes().size();
   ASSERT_FALSE(planner->finished());
   const TimeUs issued = planner->waypoint_time();

@@ -30,7 +30,7 @@ Status ScanMatcher::configure(const Params& p, const Pose2& initial) {
   initial_ = initial;
   started_ = false;
   accepted_ = 0;
-  key_pose_count_ = 0;
+  key_discs_.count = 0;
   return Status::kOk;
 }
 
@@ -77,20 +77,23 @@ float ScanMatcher::laser_reach_m(const LaserScan& scan) const {
 }
 
 void ScanMatcher::remember_key(const Pose2& pose, bool restart) {
-  if (restart) key_pose_count_ = 0;
+  SeenDiscs& d = key_discs_;
+  if (restart) d.count = 0;
+  // The local map keeps the last `keyframes` key scans; so do the discs.
   const std::size_t k = std::clamp<std::size_t>(params_.keyframes, 1, kMaxKeyframes);
-  if (key_pose_count_ < k) {
-    key_poses_[key_pose_count_++] = pose;
-  } else {
-    for (std::size_t i = 1; i < k; ++i) key_poses_[i - 1] = key_poses_[i];
-    key_poses_[k - 1] = pose;
+  d.count = std::min(d.count + 1, k);
+  for (std::size_t i = d.count - 1; i > 0; --i) {
+    d.x[i] = d.x[i - 1];
+    d.y[i] = d.y[i - 1];
   }
+  d.x[0] = pose.x;
+  d.y[0] = pose.y;
 }
 
 float ScanMatcher::distance_to_nearest_key(const Pose2& p) const {
   float best = std::numeric_limits<float>::infinity();
-  for (std::size_t i = 0; i < key_pose_count_; ++i) {
-    best = std::min(best, std::hypot(p.x - key_poses_[i].x, p.y - key_poses_[i].y));
+  for (std::size_t i = 0; i < key_discs_.count; ++i) {
+    best = std::min(best, std::hypot(p.x - key_discs_.x[i], p.y - key_discs_.y[i]));
   }
   return best;
 }
@@ -197,16 +200,8 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   // curve's two): the search scores the points that stay inside the map over all of it.
   const int slice_half = std::clamp<int>(params_.cov_half_window, 2, kMaxExhaustiveWindow);
   const float reach = laser_reach_m(scan);
-  SeenDiscs seen;
-  if (params_.key_spacing_of_reach > 0) {
-    seen.radius_m = reach;
-    seen.count = key_pose_count_;
-    for (std::size_t i = 0; i < key_pose_count_; ++i) {  // newest first: most points are in it
-      seen.x[i] = key_poses_[key_pose_count_ - 1 - i].x;
-      seen.y[i] = key_poses_[key_pose_count_ - 1 - i].y;
-    }
-  }
-  const SeenDiscs* seen_ptr = seen.count > 0 ? &seen : nullptr;
+  key_discs_.radius_m = reach;
+  const SeenDiscs* seen_ptr = params_.key_spacing_of_reach > 0 && key_discs_.count > 0 ? &key_discs_ : nullptr;
 
   // The motion prior's box around the constant-velocity prediction (Params::cv_box_m), in
   // cells and steps of the window's grid.

@@ -94,10 +94,10 @@ class ScanMatcher {
   Pose2 last_pose_, prev_pose_;
   TimeUs last_stamp_, prev_stamp_;
   TimeUs last_fit_stamp_;  // newest scan that fitted the map, started it or restarted it
-  // Poses of the key scans submitted to the map since it (re)started, oldest first.
+  // Where the key scans submitted since the map (re)started were taken, newest first; the
+  // radius is set per scan from the laser's reach.
   static_assert(kMaxKeyframes <= kMaxSeenDiscs, "every key scan has its disc");
-  std::array<Pose2, kMaxKeyframes> key_poses_{};
-  std::size_t key_pose_count_ = 0;
+  SeenDiscs key_discs_;
   int accepted_ = 0;
   bool started_ = false;
 };
