@@ -110,8 +110,9 @@ def main():
 
     print()
     print("| world | laser | explorer | runs | all rooms entered | collision-free | finished | "
-          "median all rooms at | mean coverage | median t90 s |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "median all rooms at | mean coverage | median t90 s | landed at home | "
+          "mean position error m | mean velocity error m/s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     groups = {}
     for (w, l, e, s), m in results:
         groups.setdefault((w, l, e), []).append(m)
@@ -119,7 +120,7 @@ def main():
         ms = [m for m in ms if m is not None]
         n = len(ms)
         if n == 0:
-            print(f"| {w} | {l} | {e} | 0 | | | | | | |")
+            print(f"| {w} | {l} | {e} | 0 | | | | | | | | | |")
             continue
         all_rooms = [m for m in ms if m.get("rooms_entered") == m.get("rooms_total")]
         t_all = [m["t_all_rooms_s"] for m in ms if m.get("t_all_rooms_s") is not None]
@@ -127,9 +128,13 @@ def main():
         free = sum(1 for m in ms if m.get("collisions", 1) == 0)
         fin = sum(1 for m in ms if m.get("mission_finished"))
         cov = statistics.mean(m.get("coverage", 0.0) for m in ms)
+        home = sum(1 for m in ms if m.get("returned_home"))
+        pos = [m["pos_err_mean_m"] for m in ms if m.get("pos_err_mean_m") is not None]
+        vel = [m["vel_err_mean_mps"] for m in ms if m.get("vel_err_mean_mps") is not None]
         print(f"| {w} | {l} | {e} | {n} | {len(all_rooms)}/{n} | {free}/{n} | {fin}/{n} | "
               f"{mmss(statistics.median(t_all)) if t_all else '-'} | {fmt(cov, 1, True)} | "
-              f"{fmt(statistics.median(t90)) if t90 else '-'} |")
+              f"{fmt(statistics.median(t90)) if t90 else '-'} | {home}/{n} | "
+              f"{fmt(statistics.mean(pos), 2) if pos else '-'} | {fmt(statistics.mean(vel), 3) if vel else '-'} |")
     if args.plot:
         return plot(args, results)
     return 0
