@@ -143,6 +143,9 @@ void AutonomyStack::scan_task() {
                        wrap_angle(nav_.heading_rad - nav_.yaw_rate_radps * back)};
     prior.position_std_m = std::min(nav_.position_std_m.x(), nav_.position_std_m.y());
     prior.heading_std_rad = nav_.heading_std_rad;
+    prior.vx_mps = nav_.velocity_mps.x();
+    prior.vy_mps = nav_.velocity_mps.y();
+    prior.yaw_rate_radps = nav_.yaw_rate_radps;
     prior_ptr = &prior;
   }
   last_match_ = matcher_.process(scan_, prior_ptr);

@@ -50,6 +50,10 @@ struct PosePrior {
   Pose2 pose;
   float position_std_m = -1;  // 1 sigma; negative: unknown (window from max acceleration)
   float heading_std_rad = -1;
+  // The vehicle's velocity (world frame) and yaw rate at the stamp, held over the laser's
+  // sweep to move each beam's point to where the sensor was at the stamp (ScanMatcher::deskew).
+  // Zero: the scan is taken as instantaneous.
+  float vx_mps = 0, vy_mps = 0, yaw_rate_radps = 0;
 };
 
 class ScanMatcher {
@@ -73,6 +77,7 @@ class ScanMatcher {
 
  private:
   bool to_points(const LaserScan& scan);
+  void deskew(const LaserScan& scan, const PosePrior& prior);
   float laser_reach_m(const LaserScan& scan) const;
   void remember_key(const Pose2& pose, bool restart);
   float distance_to_nearest_key(const Pose2& p) const;
