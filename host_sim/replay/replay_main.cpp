@@ -1,8 +1,8 @@
 // kestrel-replay: runs the scan matcher (paper 000, section 5.1) over a recorded log, laser
 // only, and writes trajectory_est.tum (each pose stamped with its scan's ipc_timestamp),
 // metrics.json, map.pgm/map.yaml and render.png into --out.
-//   kestrel-replay --log FILE [--format carmen|mines] --out DIR
-// Exit status: 0 done, 1 bad usage or output error, 2 unreadable or malformed log.
+//   kestrel-replay --log FILE [--format carmen|mines] --out DIR    (--help: the options)
+// Exit status: 0 done, 1 output error, 2 bad usage or an unreadable or malformed log.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -49,7 +49,22 @@ Params profile(const std::string& format) {
 constexpr int kReplayDim = 2000;  // 40 m at 2 cm: the host can afford a wider window
 LikelihoodMapStorage<kReplayDim, kMaxKeyframes * kMaxBeams> g_map_a, g_map_b;
 
-void usage() { std::fprintf(stderr, "usage: kestrel-replay --log FILE [--format carmen|mines] --out DIR\n"); }
+void usage(std::FILE* to) { std::fprintf(to, "usage: kestrel-replay --log FILE [--format carmen|mines] --out DIR\n"); }
+
+void help() {
+  usage(stdout);
+  std::fputs(
+      "Runs the scan matcher (paper 000, section 5.1) over a recorded log, laser only, with one\n"
+      "fixed profile per log format (never per log).\n"
+      "  --log FILE     the log: CARMEN (FLASER, ROBOTLASER1; plain or .gz) or the URG-04LX .dat format\n"
+      "  --format F     carmen (default) or mines (the .dat format)\n"
+      "  --out DIR      writes trajectory_est.tum (each pose stamped with its scan's time), metrics.json\n"
+      "                 (RPE and ATE against the log's reference poses when it has them, lost and\n"
+      "                 rejected scans, time per scan), map.pgm + map.yaml (ROS map_server), render.png\n"
+      "  --help         this text\n"
+      "Exit status: 0 done, 1 output error, 2 bad usage or an unreadable or malformed log.\n",
+      stdout);
+}
 
 }  // namespace
 
@@ -57,7 +72,10 @@ int main(int argc, char** argv) {
   std::string log, format = "carmen", out_dir;
   cli::ArgReader args(argc, argv);
   while (args.next()) {
-    if (args.is("--log")) {
+    if (args.is("--help") || args.is("-h")) {
+      help();
+      return 0;
+    } else if (args.is("--log")) {
       args.take(log);
     } else if (args.is("--format")) {
       if (args.take(format) && format != "carmen" && format != "mines")
@@ -72,7 +90,7 @@ int main(int argc, char** argv) {
   if (args.ok() && out_dir.empty()) args.fail("--out DIR is required");
   if (!args.ok()) {
     std::fprintf(stderr, "kestrel-replay: %s\n", args.error().c_str());
-    usage();
+    usage(stderr);
     return 2;
   }
 

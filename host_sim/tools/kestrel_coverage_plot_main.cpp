@@ -37,13 +37,30 @@ struct PanelSpec {
   std::vector<SeriesSpec> series;
 };
 
+constexpr const char* kUsage =
+    "usage: kestrel-coverage-plot --out PNG [--step S] [--end S]\n"
+    "           --panel TITLE --series LABEL=CSV[,CSV...] [--series ...] [--panel ...]\n";
+
 int usage(const std::string& msg) {
-  std::fprintf(stderr,
-               "kestrel-coverage-plot: %s\n"
-               "usage: kestrel-coverage-plot --out PNG [--step S] [--end S]\n"
-               "           --panel TITLE --series LABEL=CSV[,CSV...] [--series ...] [--panel ...]\n",
-               msg.c_str());
+  std::fprintf(stderr, "kestrel-coverage-plot: %s\n%s", msg.c_str(), kUsage);
   return 2;
+}
+
+int help() {
+  std::fputs(kUsage, stdout);
+  std::fputs(
+      "Coverage against time, one curve per --series (the mean over its runs' coverage_vs_time.csv\n"
+      "files, as kestrel-sim writes them; a run that ended early keeps its last coverage), one\n"
+      "panel per --panel.\n"
+      "  --out PNG      the picture to write\n"
+      "  --step S       sampling step of the curves, seconds (default 1)\n"
+      "  --end S        end of the time axis (default: where the longest run ends)\n"
+      "  --panel TITLE  starts a panel; the --series after it belong to it\n"
+      "  --series LABEL=CSV[,CSV...]  a curve and the runs it averages\n"
+      "  --help         this text\n"
+      "Exit status 0 done, 1 a record or the picture failed, 2 bad usage.\n",
+      stdout);
+  return 0;
 }
 
 }  // namespace
@@ -55,7 +72,9 @@ int main(int argc, char** argv) {
   cli::ArgReader args(argc, argv);
   while (args.next()) {
     std::string v;
-    if (args.is("--out")) {
+    if (args.is("--help") || args.is("-h")) {
+      return help();
+    } else if (args.is("--out")) {
       args.take(out);
     } else if (args.is("--step")) {
       args.take_double(step, 1e-6, 1e9);

@@ -34,19 +34,39 @@ struct Options {
   uint64_t seed = 1;
   double seconds = 0;  // 0: the script's length (manual) or 60 s (waypoints)
   double dt = 0.025;   // controller period (the UTM-30LX scan period)
+  bool help = false;
 };
 
-void usage() {
-  std::fprintf(stderr,
+void usage(std::FILE* to) {
+  std::fprintf(to,
                "usage: kestrel-sysid [--out DIR] [--script FILE | --waypoints] [--seed N] [--seconds S] [--dt S]\n"
                "                    [--config SIM_CONFIG_FILE]\n");
+}
+
+void help() {
+  usage(stdout);
+  std::fputs(
+      "Identifies paper 000 equation 1 (gain, offset and attitude lag per axis) from a simulated\n"
+      "flight, prints it against the simulator's true values and designs the LQR controller.\n"
+      "  --out DIR       writes DIR/controller.params (default sysid-out)\n"
+      "  --script FILE   excitation command script flown open loop (default: the built-in one)\n"
+      "  --waypoints     fly the closed-loop waypoints mission instead of a script\n"
+      "  --seed N        simulator seed (default 1)\n"
+      "  --seconds S     flight length (default: the script's length, or 60 s with --waypoints)\n"
+      "  --dt S          controller period the gains are designed for (default 0.025, the UTM-30LX)\n"
+      "  --config FILE   simulator overrides (vehicle.*, laser.*, imu.*, sim.*), as kestrel-sim --config\n"
+      "  --help          this text\n"
+      "Exit status: 0 done, 1 the flight, fit or output failed, 2 bad usage.\n",
+      stdout);
 }
 
 // Returns "" or the first mistake, naming the option.
 std::string parse_args(int argc, char** argv, Options& o) {
   cli::ArgReader args(argc, argv);
   while (args.next()) {
-    if (args.is("--waypoints")) {
+    if (args.is("--help") || args.is("-h")) {
+      o.help = true;
+    } else if (args.is("--waypoints")) {
       o.waypoints = true;
     } else if (args.is("--out")) {
       args.take(o.out);
@@ -73,8 +93,12 @@ int main(int argc, char** argv) {
   Options o;
   if (const std::string e = parse_args(argc, argv, o); !e.empty()) {
     std::fprintf(stderr, "kestrel-sysid: %s\n", e.c_str());
-    usage();
+    usage(stderr);
     return 2;
+  }
+  if (o.help) {
+    help();
+    return 0;
   }
   tuning::FlightSpec spec;
   spec.sim.seed = o.seed;

@@ -35,20 +35,45 @@ struct Options {
   std::string world = "iarc-arena";
   std::vector<uint64_t> accept{21, 22};  // closed-loop acceptance seeds (none: skip)
   double hover_s = 15;
+  bool help = false;
 };
 
-void usage() {
-  std::fprintf(stderr,
+void usage(std::FILE* to) {
+  std::fprintf(to,
                "usage: kestrel-tune-ekf [--out DIR] [--train-seeds 1,2,3,4,5,6] [--test-seeds 11,12]\n"
                "                        [--seconds S] [--max-evals N] [--world NAME] [--position-time S]\n"
                "                        [--accept-seeds 21,22 | --no-accept] [--hover-s S]\n");
+}
+
+void help() {
+  usage(stdout);
+  std::fputs(
+      "Learns the EKF's noise parameters from simulated waypoint flights with ground truth (paper 000\n"
+      "section 5.2, Figure 6b), checks them on held-out flights and accepts them in closed loop.\n"
+      "  --out DIR            writes DIR/ekf_learned.params and DIR/velocity_before_after.png\n"
+      "                       (default tune-ekf-out)\n"
+      "  --train-seeds LIST   seeds of the training flights (default 1,2,3,4,5,6)\n"
+      "  --test-seeds LIST    seeds of the held-out flights (default 11,12)\n"
+      "  --seconds S          length of each waypoint flight (default 40)\n"
+      "  --max-evals N        objective evaluations the coordinate descent may spend (default 300)\n"
+      "  --world NAME         built-in world to fly in (default iarc-arena)\n"
+      "  --position-time S    tau of the objective |dv|^2 + |dp|^2 / tau^2 (default 1; 0: velocity\n"
+      "                       only, as paper 000)\n"
+      "  --accept-seeds LIST  hover flights that must be no worse with the learned parameters\n"
+      "                       (default 21,22); --no-accept skips the check\n"
+      "  --hover-s S          length of each acceptance hover (default 15)\n"
+      "  --help               this text\n"
+      "Exit status: 0 done, 1 a flight or the output failed, 2 bad usage.\n",
+      stdout);
 }
 
 // Returns "" or the first mistake, naming the option.
 std::string parse_args(int argc, char** argv, Options& o) {
   cli::ArgReader args(argc, argv);
   while (args.next()) {
-    if (args.is("--no-accept")) {
+    if (args.is("--help") || args.is("-h")) {
+      o.help = true;
+    } else if (args.is("--no-accept")) {
       o.accept.clear();
     } else if (args.is("--accept-seeds")) {
       args.take_u64_list(o.accept);
@@ -119,8 +144,12 @@ int main(int argc, char** argv) {
   Options o;
   if (const std::string e = parse_args(argc, argv, o); !e.empty()) {
     std::fprintf(stderr, "kestrel-tune-ekf: %s\n", e.c_str());
-    usage();
+    usage(stderr);
     return 2;
+  }
+  if (o.help) {
+    help();
+    return 0;
   }
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);

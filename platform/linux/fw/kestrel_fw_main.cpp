@@ -49,14 +49,33 @@ struct Options {
   double max_s = 900;
 };
 
+constexpr const char* kUsage =
+    "usage: kestrel-fw (--hil HOST:PORT | --hokuyo DEV --autopilot DEV [--baud N])\n"
+    "                  [--laser utm30lx|urg04lx] [--mission hover|explore] [--explorer blend|wallfollow|srt]\n"
+    "                  [--hover-s S] [--max-s S] [--ekf FILE] [--controller FILE]\n";
+
 int usage(const char* why) {
-  std::fprintf(stderr,
-               "kestrel-fw: %s\n"
-               "usage: kestrel-fw (--hil HOST:PORT | --hokuyo DEV --autopilot DEV [--baud N])\n"
-               "                  [--laser utm30lx|urg04lx] [--mission hover|explore] [--explorer blend|wallfollow|srt]\n"
-               "                  [--hover-s S] [--max-s S] [--ekf FILE] [--controller FILE]\n",
-               why);
+  std::fprintf(stderr, "kestrel-fw: %s\n%s", why, kUsage);
   return 2;
+}
+
+int help() {
+  std::fputs(kUsage, stdout);
+  std::fputs(
+      "The autonomy stack on a Linux board: the devices are a Hokuyo (SCIP 2.0) and an autopilot\n"
+      "on serial ports, or a simulator serving them over TCP (kestrel-sim --mission hil).\n"
+      "  --hil HOST:PORT    devices from kestrel-sim --mission hil\n"
+      "  --hokuyo DEV       the laser's serial device; --autopilot DEV the autopilot's; --baud N (115200)\n"
+      "  --laser L          the laser model: utm30lx (default) or urg04lx\n"
+      "  --mission M        hover (take off, hover --hover-s seconds (60), land; default) or explore\n"
+      "  --explorer E       blend (default), wallfollow or srt, for --mission explore\n"
+      "  --max-s S          stop after S seconds (default 900)\n"
+      "  --ekf FILE         EKF parameter file (kestrel-tune-ekf writes one)\n"
+      "  --controller FILE  controller parameter file (kestrel-sysid writes one)\n"
+      "  --help             this text\n"
+      "Exit status 2 for a usage error.\n",
+      stdout);
+  return 0;
 }
 
 bool parse(int argc, char** argv, Options& o, std::string& err) {
@@ -116,6 +135,8 @@ bool parse(int argc, char** argv, Options& o, std::string& err) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return help();
   Options opt;
   std::string err;
   if (!parse(argc, argv, opt, err)) return usage(err.c_str());
