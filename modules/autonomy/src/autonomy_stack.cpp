@@ -3,10 +3,6 @@
 #include <algorithm>
 
 namespace kestrel::autonomy {
-namespace {
-// Flying home, a scan older than this many scan periods no longer bounds the flight.
-constexpr int64_t kReturnScanMaxAgePeriods = 3;
-}  // namespace
 
 AutonomyStack::AutonomyStack(const Devices& devices, const TimeSource& exec_clock)
     : dev_(devices),
@@ -177,32 +173,13 @@ void AutonomyStack::guidance_task(TimeUs now) {
     ++counters_.guidance_steps;
   }
   setpoint_ = mission_.step(now, nav_, explorer_ != nullptr ? &explorer_out_ : nullptr);
+  // Flying home, the explorer's approach limiter bounds the trail's velocity set-point against
+  // the newest scan, matched or not (return_velocity_bound.hpp says why).
   if (explorer_ != nullptr && mission_.phase() == mission::Phase::kReturn &&
-      setpoint_.mode == GuidanceSetpoint::Mode::kVelocity)
-    bound_return_setpoint(now);
-}
-
-void AutonomyStack::bound_return_setpoint(TimeUs now) {
-  // On the way home the trail is in the estimate's frame, which may have drifted since it was
-  // drawn: the explorer's approach limiter bounds the flight against the newest scan, matched
-  // or not (a run of rejected matches must not leave it looking at old walls). Once per scan,
-  // like the explorer; between scans the bounded velocity stands. Without a recent scan the
-  // vehicle holds.
-  const Duration period = dev_.laser.geometry().scan_period;
-  const bool recent = newest_scan_.beam_count > 0 && now - newest_scan_.stamp <= period * kReturnScanMaxAgePeriods;
-  if (!recent) {
-    setpoint_.velocity_mps.x() = 0.0f;
-    setpoint_.velocity_mps.y() = 0.0f;
+      setpoint_.mode == GuidanceSetpoint::Mode::kVelocity &&
+      return_bound_.apply(now, dev_.laser.geometry().scan_period, newest_scan_, newest_scan_fresh_, nav_, *explorer_,
+                          setpoint_) != Status::kOk)
     ++counters_.guidance_rejected;
-    return;
-  }
-  if (newest_scan_fresh_) {
-    newest_scan_fresh_ = false;
-    if (explorer_->bound_velocity(nav_, newest_scan_, setpoint_) != Status::kOk) ++counters_.guidance_rejected;
-    return_velocity_ = setpoint_.velocity_mps.head<2>();
-    return;
-  }
-  setpoint_.velocity_mps.head<2>() = return_velocity_;
 }
 
 void AutonomyStack::control_task(TimeUs now) {

@@ -13,6 +13,7 @@
 // start() nothing allocates.
 #include <cstdint>
 
+#include "kestrel/autonomy/return_velocity_bound.hpp"
 #include "kestrel/autonomy/stack_config.hpp"
 #include "kestrel/autonomy/task_table.hpp"
 #include "kestrel/control/controller.hpp"
@@ -100,7 +101,6 @@ class AutonomyStack {
   void imu_task();
   void scan_task();
   void guidance_task(TimeUs now);
-  void bound_return_setpoint(TimeUs now);
   void control_task(TimeUs now);
 
   Devices dev_;
@@ -125,7 +125,7 @@ class AutonomyStack {
   bool guidance_scan_fresh_ = false;
   LaserScan newest_scan_;      // the newest scan, matched or not: the flight home's limiter
   bool newest_scan_fresh_ = false;
-  Eigen::Vector2f return_velocity_ = Eigen::Vector2f::Zero();  // horizontal, bounded on the newest scan
+  ReturnVelocityBound return_bound_;  // the flight home's velocity, bounded on the newest scan
   mission::ExplorerOutput explorer_out_;  // the explorer's newest set-point
   scan_matching::ScanMatch last_match_;
   bool new_match_ = false;

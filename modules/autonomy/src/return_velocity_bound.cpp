@@ -1,0 +1,24 @@
+#include "kestrel/autonomy/return_velocity_bound.hpp"
+
+namespace kestrel::autonomy {
+
+Status ReturnVelocityBound::apply(TimeUs now, Duration scan_period, const LaserScan& scan, bool& scan_fresh,
+                                  const NavState& nav, exploration::Explorer& explorer, GuidanceSetpoint& setpoint) {
+  if (setpoint.mode != GuidanceSetpoint::Mode::kVelocity) return Status::kUnsupported;
+  const bool recent = scan.beam_count > 0 && now - scan.stamp <= scan_period * kScanMaxAgePeriods;
+  if (!recent) {
+    setpoint.velocity_mps.x() = 0.0f;
+    setpoint.velocity_mps.y() = 0.0f;
+    return Status::kRejected;
+  }
+  if (scan_fresh) {
+    scan_fresh = false;
+    const Status s = explorer.bound_velocity(nav, scan, setpoint);
+    velocity_ = setpoint.velocity_mps.head<2>();
+    return s;
+  }
+  setpoint.velocity_mps.head<2>() = velocity_;
+  return Status::kOk;
+}
+
+}  // namespace kestrel::autonomy
