@@ -17,16 +17,9 @@ namespace {
 using test::LaserModel;
 using test::SegmentWorld;
 using test::uniform_scan;
+using test::nav_at;
 
 const LaserModel kUrg = LaserModel::urg04lx();
-
-NavState nav_at(float x, float y, float heading) {
-  NavState n;
-  n.valid = true;
-  n.position_m = {x, y, 1.0f};
-  n.heading_rad = heading;
-  return n;
-}
 
 SegmentWorld hall() {
   SegmentWorld w;

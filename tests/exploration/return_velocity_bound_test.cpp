@@ -19,18 +19,11 @@ using exploration::BeamGeometry;
 using exploration::BlendExplorer;
 using test::LaserModel;
 using test::SegmentWorld;
+using test::nav_at;
 
 const LaserModel kUrg = LaserModel::urg04lx();
 const Duration kPeriod = Duration::from_ms(100);  // the URG-04LX's 10 Hz
 const TimeUs kT0 = TimeUs::from_s(10.0);
-
-NavState nav_at(float x, float y, float heading) {
-  NavState n;
-  n.valid = true;
-  n.position_m = {x, y, 1.0f};
-  n.heading_rad = heading;
-  return n;
-}
 
 GuidanceSetpoint velocity(float vx, float vy) {
   GuidanceSetpoint sp;

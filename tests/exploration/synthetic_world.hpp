@@ -88,6 +88,15 @@ class SegmentWorld {
 };
 
 // A scan with every beam set to the same value (a range in mm or a range code).
+// A valid estimate at (x, y), 1 m up, with this heading, at rest.
+inline NavState nav_at(float x, float y, float heading) {
+  NavState n;
+  n.valid = true;
+  n.position_m = {x, y, 1.0f};
+  n.heading_rad = heading;
+  return n;
+}
+
 inline LaserScan uniform_scan(const LaserModel& m, uint16_t value) {
   LaserScan s;
   s.beam_count = m.beams;
