@@ -253,22 +253,26 @@ TEST(ScanMatcher, DeskewsASweepTakenWhileTurning) {
   EXPECT_GT(position_error[1], 0.008f);
 }
 
-// A motion that is not a number is ignored: the scan is taken as instantaneous.
+// A motion that is not a number, or a prior pose that is not (the motion cannot be turned into
+// the sensor's frame), is ignored: the scan is taken as instantaneous and still matches.
 TEST(ScanMatcher, NonFiniteMotionLeavesTheScanAsItIs) {
-  Rig r;
-  ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, test::room(), 682, 4.19f, at(0))).ok());
-  PosePrior prior;
-  prior.pose = {0, 0, 0};
-  prior.position_std_m = 0.01f;
-  prior.heading_std_rad = 0.01f;
-  prior.yaw_rate_radps = std::numeric_limits<float>::quiet_NaN();
-  prior.vx_mps = 0.5f;
-  LaserScan scan = test::cast_scan({0, 0, 0}, test::room(), 682, 4.19f, at(1));
-  scan.beam_interval = Duration::from_us(98);
-  const ScanMatch s = r.m->process(scan, &prior);
-  ASSERT_TRUE(s.ok());
-  EXPECT_LT(std::hypot(s.measurement.pose.x, s.measurement.pose.y), 0.0075f);
-  EXPECT_LT(std::fabs(s.measurement.pose.theta), 0.003f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const bool bad_heading : {false, true}) {
+    Rig r;
+    ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, test::room(), 682, 4.19f, at(0))).ok());
+    PosePrior prior;
+    prior.pose = {0, 0, bad_heading ? nan : 0.0f};
+    prior.position_std_m = 0.01f;
+    prior.heading_std_rad = 0.01f;
+    prior.yaw_rate_radps = bad_heading ? 0.8f : nan;
+    prior.vx_mps = 0.5f;
+    LaserScan scan = test::cast_scan({0, 0, 0}, test::room(), 682, 4.19f, at(1));
+    scan.beam_interval = Duration::from_us(98);
+    const ScanMatch s = r.m->process(scan, &prior);
+    ASSERT_TRUE(s.ok()) << "bad heading: " << bad_heading;
+    EXPECT_LT(std::hypot(s.measurement.pose.x, s.measurement.pose.y), 0.0075f);
+    EXPECT_LT(std::fabs(s.measurement.pose.theta), 0.003f);
+  }
 }
 
 // A prior whose uncertainty is not a number keeps the acceleration window (no crash, no NaN).

@@ -81,9 +81,9 @@ bool ScanMatcher::to_points(const LaserScan& scan) {
 // sweep; second order in the turn angle (below a millimetre at 4 m over one sweep).
 void ScanMatcher::deskew(const LaserScan& scan, const PosePrior& prior) {
   const float w = prior.yaw_rate_radps;
-  if (scan.beam_interval.us <= 0 || !std::isfinite(w) || !std::isfinite(prior.vx_mps) || !std::isfinite(prior.vy_mps) ||
-      (w == 0.0f && prior.vx_mps == 0.0f && prior.vy_mps == 0.0f)) {
-    return;
+  if (scan.beam_interval.us <= 0 || !prior.pose.finite() || !std::isfinite(w) || !std::isfinite(prior.vx_mps) ||
+      !std::isfinite(prior.vy_mps) || (w == 0.0f && prior.vx_mps == 0.0f && prior.vy_mps == 0.0f)) {
+    return;  // nothing to correct with: the scan is taken as instantaneous
   }
   const float c = std::cos(prior.pose.theta), s = std::sin(prior.pose.theta);
   const float vx = c * prior.vx_mps + s * prior.vy_mps, vy = -s * prior.vx_mps + c * prior.vy_mps;  // sensor frame
