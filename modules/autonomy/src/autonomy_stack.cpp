@@ -1,7 +1,5 @@
 #include "kestrel/autonomy/autonomy_stack.hpp"
 
-#include <algorithm>
-
 namespace kestrel::autonomy {
 
 AutonomyStack::AutonomyStack(const Devices& devices, const TimeSource& exec_clock)
@@ -125,25 +123,10 @@ void AutonomyStack::scan_task() {
   newest_scan_ = scan_;
   newest_scan_fresh_ = true;
   // Centre the search on the filter's pose at the scan's time: the IMU carries it through a
-  // turn or a lost match, where the matcher's own constant-velocity guess would not.
-  // Its uncertainty sizes the window: what the filter has not already accounted for. The
-  // better-known horizontal axis sets the translation window: along a corridor the filter's
-  // variance grows without bound (the match cannot see along it), yet there the score is flat
-  // and a wider window would buy nothing but time; when matches stop altogether both axes
-  // grow and the window with them, up to its maximum.
+  // turn or a lost match, where the matcher's own constant-velocity guess would not. Its
+  // uncertainty sizes the window: what the filter has not already accounted for.
   scan_matching::PosePrior prior;
-  const scan_matching::PosePrior* prior_ptr = nullptr;
-  if (nav_.valid) {
-    const float back = static_cast<float>((nav_.stamp - scan_.stamp).seconds());
-    prior.pose = Pose2{nav_.position_m.x() - nav_.velocity_mps.x() * back, nav_.position_m.y() - nav_.velocity_mps.y() * back,
-                       wrap_angle(nav_.heading_rad - nav_.yaw_rate_radps * back)};
-    prior.position_std_m = std::min(nav_.position_std_m.x(), nav_.position_std_m.y());
-    prior.heading_std_rad = nav_.heading_std_rad;
-    prior.vx_mps = nav_.velocity_mps.x();
-    prior.vy_mps = nav_.velocity_mps.y();
-    prior.yaw_rate_radps = nav_.yaw_rate_radps;
-    prior_ptr = &prior;
-  }
+  const scan_matching::PosePrior* prior_ptr = scan_prior_from_nav(nav_, scan_.stamp, prior) ? &prior : nullptr;
   last_match_ = matcher_.process(scan_, prior_ptr);
   new_match_ = true;
   if (!last_match_.ok()) {

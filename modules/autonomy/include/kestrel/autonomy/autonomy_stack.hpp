@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "kestrel/autonomy/return_velocity_bound.hpp"
+#include "kestrel/autonomy/scan_prior.hpp"
 #include "kestrel/autonomy/stack_config.hpp"
 #include "kestrel/autonomy/task_table.hpp"
 #include "kestrel/control/controller.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // Test-only 2D worlds made of wall segments, with an exact ray caster that fills a LaserScan
 // the way the Hokuyo driver does (mm ranges, kNoReturn beyond the maximum range). Used by the
-// exploration tests to make synthetic scans and to fly a kinematic point vehicle.
+// exploration and autonomy tests to make synthetic scans and to fly a kinematic point vehicle.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -1,0 +1,108 @@
+// The scan matcher's prior from the filter's state (AutonomyStack::scan_task): the pose carried
+// to the scan's stamp, the window's standard deviations, the motion the deskew holds over the
+// sweep, and no prior from a filter that cannot give one.
+#include "kestrel/autonomy/scan_prior.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace kestrel::autonomy {
+namespace {
+
+using scan_matching::PosePrior;
+
+const TimeUs kScanStamp = TimeUs::from_s(20.0);
+
+NavState moving_nav(double seconds_after_scan) {
+  NavState nav;
+  nav.valid = true;
+  nav.stamp = TimeUs::from_s(20.0 + seconds_after_scan);
+  nav.position_m = Eigen::Vector3f(4.0f, -2.0f, 1.0f);
+  nav.velocity_mps = Eigen::Vector3f(0.8f, -0.5f, 0.1f);
+  nav.yaw_rate_radps = 0.6f;
+  nav.heading_rad = 1.0f;
+  nav.position_std_m = Eigen::Vector3f(0.30f, 0.05f, 0.02f);
+  nav.heading_std_rad = 0.01f;
+  return nav;
+}
+
+TEST(ScanPriorTest, CarriesTheFilterBackToTheScanStamp) {
+  PosePrior prior;
+  ASSERT_TRUE(scan_prior_from_nav(moving_nav(0.15), kScanStamp, prior));
+  EXPECT_NEAR(prior.pose.x, 4.0f - 0.8f * 0.15f, 1e-5f);
+  EXPECT_NEAR(prior.pose.y, -2.0f + 0.5f * 0.15f, 1e-5f);
+  EXPECT_NEAR(prior.pose.theta, 1.0f - 0.6f * 0.15f, 1e-5f);
+}
+
+TEST(ScanPriorTest, CarriesForwardToAScanStampedAfterTheFilter) {
+  PosePrior prior;
+  ASSERT_TRUE(scan_prior_from_nav(moving_nav(-0.1), kScanStamp, prior));
+  EXPECT_NEAR(prior.pose.x, 4.0f + 0.8f * 0.1f, 1e-5f);
+  EXPECT_NEAR(prior.pose.theta, 1.0f + 0.6f * 0.1f, 1e-5f);
+}
+
+TEST(ScanPriorTest, WrapsTheHeadingCarriedAcrossPi) {
+  NavState nav = moving_nav(0.1);
+  nav.heading_rad = -3.12f;  // 0.06 rad of turn back crosses -pi
+  PosePrior prior;
+  ASSERT_TRUE(scan_prior_from_nav(nav, kScanStamp, prior));
+  EXPECT_NEAR(prior.pose.theta, -3.18f + 2.0f * kPi<float>, 1e-5f);
+}
+
+// The deskew needs the world-frame velocity and the yaw rate as the filter has them; the
+// matcher rotates them into the sensor frame itself.
+TEST(ScanPriorTest, HandsTheFiltersMotionToTheDeskew) {
+  PosePrior prior;
+  ASSERT_TRUE(scan_prior_from_nav(moving_nav(0.05), kScanStamp, prior));
+  EXPECT_FLOAT_EQ(prior.vx_mps, 0.8f);
+  EXPECT_FLOAT_EQ(prior.vy_mps, -0.5f);
+  EXPECT_FLOAT_EQ(prior.yaw_rate_radps, 0.6f);
+}
+
+// Along a corridor one horizontal axis is unknown; the window follows the better-known one.
+TEST(ScanPriorTest, WindowFollowsTheBetterKnownHorizontalAxis) {
+  PosePrior prior;
+  ASSERT_TRUE(scan_prior_from_nav(moving_nav(0.05), kScanStamp, prior));
+  EXPECT_FLOAT_EQ(prior.position_std_m, 0.05f);
+  EXPECT_FLOAT_EQ(prior.heading_std_rad, 0.01f);
+}
+
+TEST(ScanPriorTest, NoPriorBeforeTheFilterIsInitialised) {
+  NavState nav = moving_nav(0.05);
+  nav.valid = false;
+  PosePrior prior;
+  prior.position_std_m = 123.0f;
+  EXPECT_FALSE(scan_prior_from_nav(nav, kScanStamp, prior));
+  EXPECT_EQ(prior.position_std_m, 123.0f);  // untouched
+}
+
+TEST(ScanPriorTest, NoPriorAcrossATimeJump) {
+  PosePrior prior;
+  EXPECT_TRUE(scan_prior_from_nav(moving_nav(kMaxPriorExtrapolationS), kScanStamp, prior));
+  EXPECT_FALSE(scan_prior_from_nav(moving_nav(kMaxPriorExtrapolationS + 0.01), kScanStamp, prior));
+  EXPECT_FALSE(scan_prior_from_nav(moving_nav(-kMaxPriorExtrapolationS - 0.01), kScanStamp, prior));
+  EXPECT_FALSE(scan_prior_from_nav(moving_nav(-3600.0), kScanStamp, prior));
+}
+
+TEST(ScanPriorTest, NoPriorFromANonFiniteState) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  PosePrior prior;
+  NavState nav = moving_nav(0.05);
+  nav.position_m.x() = nan;
+  EXPECT_FALSE(scan_prior_from_nav(nav, kScanStamp, prior));
+  nav = moving_nav(0.05);
+  nav.velocity_mps.y() = inf;
+  EXPECT_FALSE(scan_prior_from_nav(nav, kScanStamp, prior));
+  nav = moving_nav(0.05);
+  nav.yaw_rate_radps = nan;
+  EXPECT_FALSE(scan_prior_from_nav(nav, kScanStamp, prior));
+  nav = moving_nav(0.05);
+  nav.heading_rad = inf;
+  EXPECT_FALSE(scan_prior_from_nav(nav, kScanStamp, prior));
+}
+
+}  // namespace
+}  // namespace kestrel::autonomy
