@@ -56,5 +56,29 @@ TEST(ConfigFile, ShippedExampleHoldsEveryDefault) {
   EXPECT_DOUBLE_EQ(cfg.command_delay_s, defaults.command_delay_s);
 }
 
+// The README's experiments pass these with --config: each must load and change what it says.
+TEST(ConfigFile, ShippedExperimentConfigsApply) {
+  const std::string dir = std::string(KESTREL_SOURCE_DIR) + "/host_sim/sim/configs/";
+  ConfigFile sweep;
+  ASSERT_EQ(sweep.load(dir + "instantaneous_sweep.cfg"), "");
+  SimConfig a;
+  a.laser = LaserParams::urg04lx();
+  ASSERT_EQ(a.apply(sweep), "");
+  EXPECT_EQ(a.laser.beam_interval_us, 1);
+  EXPECT_EQ(a.laser.beam_count, LaserParams::urg04lx().beam_count);  // the rest stays the URG's
+
+  ConfigFile perfect;
+  ASSERT_EQ(perfect.load(dir + "perfect_imu.cfg"), "");
+  SimConfig b;
+  ASSERT_EQ(b.apply(perfect), "");
+  EXPECT_EQ(b.imu.accel_noise_density, 0.0);
+  EXPECT_EQ(b.imu.accel_bias_std, 0.0);
+  EXPECT_EQ(b.imu.accel_bias_walk, 0.0);
+  EXPECT_EQ(b.imu.gyro_noise_density, 0.0);
+  EXPECT_EQ(b.imu.gyro_bias_std, 0.0);
+  EXPECT_EQ(b.imu.gyro_bias_walk, 0.0);
+  EXPECT_EQ(b.imu.rate_hz, SimConfig{}.imu.rate_hz);
+}
+
 }  // namespace
 }  // namespace kestrel::sim

@@ -53,6 +53,8 @@ def run_one(args, world, laser, explorer, seed):
                "--explorer", explorer, "--duration", str(args.duration), "--seed", str(seed), "--out", d]
         for kv in args.mission_arg or []:
             cmd += ["--mission-arg", kv]
+        if args.config:
+            cmd += ["--config", args.config]
         with open(os.path.join(d, "stderr.txt"), "w") as err:
             subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=err, timeout=args.timeout, check=False)
     try:
@@ -89,6 +91,7 @@ def main():
     ap.add_argument("--timeout", type=int, default=3600, help="wall-clock seconds per run")
     ap.add_argument("--mission-arg", action="append", metavar="KEY=VALUE",
                     help="passed to every run, e.g. keepout=2,8.9,5,9.1 (repeatable)")
+    ap.add_argument("--config", help="kestrel-sim --config FILE for every run, e.g. host_sim/sim/configs/perfect_imu.cfg")
     ap.add_argument("--plot", help="coverage-versus-time picture (PNG) of the sweep")
     ap.add_argument("--plot-tool", help="kestrel-coverage-plot (default: beside --sim)")
     args = ap.parse_args()
