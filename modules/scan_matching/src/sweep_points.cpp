@@ -73,44 +73,60 @@ void BeamTable::update(const LaserScan& scan) {
   step_rad_ = scan.angle_step_rad;
 }
 
+namespace {
+
+// The pass, with and without the motion: two loops rather than a test per point keep the
+// instantaneous one short and the registers free for the moving one.
+template <bool kMoving>
+uint16_t points_of(const LaserScan& scan, const BeamTable& beams, int32_t lo, int32_t end, const PerBeam& k,
+                   ScanPoints& out) {
+  // Locals: the uint16 stores below could alias the scan's uint16 fields for the compiler.
+  const uint32_t beam_count = scan.beam_count;
+  const uint16_t* range = scan.range_mm.data();
+  const int32_t turn = k.turn_q30, dx = k.dx_q25, dy = k.dy_q25;
+  uint32_t n = 0;
+  for (uint32_t i = 0; i < beam_count; ++i) {
+    const int32_t r = range[i];
+    if (r < lo || r >= end) continue;
+    int32_t c = beams.cos_q30(i), s = beams.sin_q30(i);
+    int32_t tx = 0, ty = 0;
+    if constexpr (kMoving) {
+      // The beam's direction turned by a, then scaled by the range: r ((1 - h) c - a s) is
+      // the formula's (1 - h) x - a y. h c and a s come in Q27 and Q28 (below 1e-8), scaled
+      // back to Q30; turned by at most a radian, |c| grows by at most 12 %: int32 holds it.
+      // (Operands straight from the table and a plain product: the compiler keeps each
+      // mul_hi one 32 x 32 multiply, where it widens the result of an earlier one to 64 bits.)
+      const int32_t a = turn * static_cast<int32_t>(i);  // Q30, |a| <= 1 rad
+      const int32_t h = mul_hi(a, a);                     // a^2 / 2 in Q29
+      const int32_t ct = c - (mul_hi(h, c) * 8 + mul_hi(a, s) * 4);
+      const int32_t st = s - (mul_hi(h, s) * 8 - mul_hi(a, c) * 4);
+      c = ct;
+      s = st;
+      // (d 2^25) (i 2^20) / 2^32: the travel in Q13 mm; 16 m of it is 2^27.
+      const auto i20 = static_cast<int32_t>(i << 20);
+      tx = mul_hi(dx, i20);
+      ty = mul_hi(dy, i20);
+    }
+    // (r 2^15) (c 2^30) / 2^32: Q13 mm, |x| < 1.12 * 65535 * 2^13 < 2^29.2.
+    out.x[n] = static_cast<float>(mul_hi(r << 15, c) + tx) * kMetresPerUnit;
+    out.y[n] = static_cast<float>(mul_hi(r << 15, s) + ty) * kMetresPerUnit;
+    out.range_mm[n] = static_cast<uint16_t>(r);
+    out.beam[n] = static_cast<uint16_t>(i);
+    ++n;
+  }
+  out.count = static_cast<uint16_t>(n);
+  return out.count;
+}
+
+}  // namespace
+
 uint16_t sweep_to_points(const LaserScan& scan, const BeamTable& beams, float min_mm, float end_mm,
                          const SweepMotion& motion, ScanPoints& out) {
   const PerBeam k = per_beam(scan, motion);
   const int32_t lo = std::max<int32_t>(whole_mm_at_least(min_mm), kMinValidRangeMm);  // range codes are no returns
   const int32_t end = whole_mm_at_least(end_mm);
   out.angle_step_rad = std::fabs(scan.angle_step_rad);
-  uint16_t n = 0;
-  for (uint16_t i = 0; i < scan.beam_count; ++i) {
-    const int32_t r = scan.range_mm[i];
-    if (r < lo || r >= end) continue;
-    int32_t c = beams.cos_q30(i), s = beams.sin_q30(i);
-    int32_t tx = 0, ty = 0;
-    if (k.moving) {
-      // The beam's direction turned by a, then scaled by the range: r ((1 - h) c - a s) is
-      // the formula's (1 - h) x - a y. h c and a s come in Q27 and Q28 (below 1e-8), scaled
-      // back to Q30; turned by at most a radian, |c| grows by at most 12 %: int32 holds it.
-      // (Operands straight from the table and a plain product: the compiler keeps each
-      // mul_hi one 32 x 32 multiply, where it widens the result of an earlier one to 64 bits.)
-      const int32_t a = k.turn_q30 * i;  // Q30, |a| <= 1 rad
-      const int32_t h = mul_hi(a, a);    // a^2 / 2 in Q29
-      const int32_t ct = c - (mul_hi(h, c) * 8 + mul_hi(a, s) * 4);
-      const int32_t st = s - (mul_hi(h, s) * 8 - mul_hi(a, c) * 4);
-      c = ct;
-      s = st;
-      // (d 2^25) (i 2^20) / 2^32: the travel in Q13 mm; 16 m of it is 2^27.
-      const int32_t i20 = i << 20;
-      tx = mul_hi(k.dx_q25, i20);
-      ty = mul_hi(k.dy_q25, i20);
-    }
-    // (r 2^15) (c 2^30) / 2^32: Q13 mm, |x| < 1.12 * 65535 * 2^13 < 2^29.2.
-    out.x[n] = static_cast<float>(mul_hi(r << 15, c) + tx) * kMetresPerUnit;
-    out.y[n] = static_cast<float>(mul_hi(r << 15, s) + ty) * kMetresPerUnit;
-    out.range_mm[n] = static_cast<uint16_t>(r);
-    out.beam[n] = i;
-    ++n;
-  }
-  out.count = n;
-  return n;
+  return k.moving ? points_of<true>(scan, beams, lo, end, k, out) : points_of<false>(scan, beams, lo, end, k, out);
 }
 
 }  // namespace kestrel::scan_matching
