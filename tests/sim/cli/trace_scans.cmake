@@ -57,6 +57,15 @@ endforeach()
 if(keys LESS 1)
   message(FATAL_ERROR "${trace}: no key scan")
 endif()
+if(PY)
+  # The summary tool reads it: one row per scan class, the episodes list present.
+  execute_process(COMMAND ${PY} ${SUMMARY} --episodes ${trace} RESULT_VARIABLE rc OUTPUT_VARIABLE summary
+                  ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT summary MATCHES "1 trace\\(s\\), [0-9]+ scans" OR NOT summary MATCHES "\\| degenerate \\| "
+     OR NOT summary MATCHES "episode")
+    message(FATAL_ERROR "scan_trace_summary.py on ${trace} (${rc}): ${summary}${err}")
+  endif()
+endif()
 execute_process(COMMAND ${SIM} ${common} --out ${OUT}/off RESULT_VARIABLE rc ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "run without --trace-scans failed (${rc}): ${err}")
