@@ -78,6 +78,16 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  if (opt.trace_scans) {
+    const std::string trace_path = opt.out_dir + "/scan_trace.csv";
+    const Status ts = mission->open_scan_trace(trace_path);
+    if (ts == Status::kUnsupported)
+      return usage_error("--trace-scans: mission '" + opt.mission + "' runs no scan matcher");
+    if (ts != Status::kOk) {
+      std::fprintf(stderr, "kestrel-sim: cannot write the scan trace '%s'\n", trace_path.c_str());
+      return 1;
+    }
+  }
   Simulation sim(std::move(world.world), cfg);
   FlightRecorder rec(sim.world(), sim.free_space(), Duration::from_s(opt.duration_s));
   SimObserverList observers;

@@ -12,7 +12,7 @@ std::string sim_usage() {
       "usage: kestrel-sim [--world NAME|FILE] [--laser utm30lx|urg04lx] [--duration S] [--seed N]\n"
       "                   --out DIR [--mission NAME] [--script FILE] [--waypoints FILE]\n"
       "                   [--explorer blend|wallfollow|srt] [--mission-arg KEY=VALUE]\n"
-      "                   [--config FILE] [--record]\n"
+      "                   [--config FILE] [--record] [--trace-scans]\n"
       "  --world     a compiled-in world (iarc-arena, gt-building, lobby, hallway, cluttered-lab)\n"
       "              or a world file (default iarc-arena)\n"
       "  --laser     utm30lx (1081 beams, 270 deg, 40 Hz, 30 m) or urg04lx (682 beams, 240 deg,\n"
@@ -24,7 +24,16 @@ std::string sim_usage() {
   for (const MissionInfo& m : mission_table()) u += std::string("\n                ") + m.name + ": " + m.summary;
   u +=
       "\n  --config    key = value file overriding vehicle.*, laser.*, imu.*, sim.* parameters\n"
-      "  --record    also write the run as a CARMEN log (sim.log) with the true poses\n";
+      "  --record    also write the run as a CARMEN log (sim.log) with the true poses\n"
+      "  --trace-scans  also write scan_trace.csv: one row per scan the autonomy stack processed\n"
+      "              (hover, waypoints, explore), with a header row: t_s, the match's flags (as\n"
+      "              an integer and as rejected,lost,degenerate,key_scan,window_clamped,\n"
+      "              map_restarted), its pose x,y,theta, covariance cov_xx,cov_yy,cov_xy,cov_tt,\n"
+      "              score, overlap, points, axis_ratio, major_axis_rad; the filter after the\n"
+      "              update nav_t_s, nav_x, nav_y, nav_vx, nav_vy, nav_heading, nav_std_x,\n"
+      "              nav_std_y, nav_std_heading; the true state at t_s true_x, true_y, true_yaw,\n"
+      "              true_vx, true_vy; match_err_m, match_err_theta and nav_err_m (the filter\n"
+      "              against the truth at nav_t_s). Metres, radians, seconds; off by default\n";
   return u;
 }
 
@@ -38,6 +47,8 @@ ParseOutcome parse_sim_options(int argc, char** argv) {
       o.help = true;
     } else if (args.is("--record")) {
       o.record = true;
+    } else if (args.is("--trace-scans")) {
+      o.trace_scans = true;
     } else if (args.is("--world")) {
       args.take(o.world);
     } else if (args.is("--laser")) {

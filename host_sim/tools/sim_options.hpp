@@ -18,6 +18,7 @@ struct SimOptions {
   std::string config_path;
   MissionOptions mission_options;
   bool record = false;
+  bool trace_scans = false;  // scan_trace.csv: one row per scan the autonomy stack processed
   bool help = false;
 };
 

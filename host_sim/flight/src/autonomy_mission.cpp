@@ -221,7 +221,10 @@ sim::MissionState AutonomyMission::tick(sim::Simulation& sim) {
     stack_->background_step();
     alloc_guard::disarm();
     allocs_in_loop_ += alloc_guard::count() - before;
-    if (stack_->new_match()) score(sim);
+    if (stack_->new_match()) {
+      score(sim);
+      if (trace_.is_open()) trace(sim);
+    }
   }
   const mission::Phase p = stack_->mission().phase();
   if (p != last_phase_) {
@@ -253,6 +256,15 @@ void AutonomyMission::score(sim::Simulation& sim) {
   pos_err_sum_ += (s.est_pos - s.true_pos).norm();
   vel_errs_.push_back((s.est_vel - s.true_vel).norm());
   samples_.push_back(s);
+}
+
+void AutonomyMission::trace(sim::Simulation& sim) {
+  const scan_matching::ScanMatch& m = stack_->last_match();
+  const NavState f = stack_->filter().state();
+  sim::VehicleState at_scan, at_nav;
+  const bool have_scan = sim.truth_at(m.measurement.stamp, at_scan) == Status::kOk;
+  const bool have_nav = f.valid && sim.truth_at(f.stamp, at_nav) == Status::kOk;
+  trace_.write(m, f, have_scan ? &at_scan : nullptr, have_nav ? &at_nav : nullptr);
 }
 
 double AutonomyMission::hover_rms_m() const {
@@ -306,6 +318,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
 }
 
 Status AutonomyMission::write_outputs(const std::string& dir) const {
+  if (trace_.flush() != Status::kOk) return Status::kIoError;
   output::TumWriter tum;
   if (tum.open(dir + "/trajectory_est.tum") != Status::kOk) return Status::kIoError;
   for (const EstimateSample& s : samples_)

@@ -20,6 +20,7 @@
 
 #include "kestrel/autonomy/autonomy_stack.hpp"
 #include "kestrel/flight/delayed_laser.hpp"
+#include "kestrel/flight/scan_trace.hpp"
 #include "kestrel/sim/mission.hpp"
 #include "kestrel/sim/mission_registry.hpp"
 
@@ -60,6 +61,7 @@ class AutonomyMission final : public sim::Mission {
   void metrics(sim::MissionMetrics& out) const override;
   std::string failure() const override { return failure_; }
   Status write_outputs(const std::string& out_dir) const override;
+  Status open_scan_trace(const std::string& path) override { return trace_.open(path); }
   void draw(output::Canvas& canvas) const override;
   std::vector<LegendRow> legend() const override;
 
@@ -69,6 +71,7 @@ class AutonomyMission final : public sim::Mission {
 
  private:
   void score(sim::Simulation& sim);
+  void trace(sim::Simulation& sim);
 
   FlightOptions options_;
   class RealClock;
@@ -85,6 +88,7 @@ class AutonomyMission final : public sim::Mission {
   std::vector<double> vel_errs_;
   mission::Phase last_phase_ = mission::Phase::kIdle;
   std::vector<std::pair<double, std::string>> phase_log_;
+  ScanTrace trace_;  // --trace-scans (scan_trace.hpp); closed unless asked for
 };
 
 }  // namespace kestrel::flight

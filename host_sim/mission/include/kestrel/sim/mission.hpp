@@ -38,6 +38,10 @@ class Mission {
   virtual void metrics(MissionMetrics& /*out*/) const {}
   // A one-line reason after kFailed.
   virtual std::string failure() const { return {}; }
+  // A per-scan trace (kestrel-sim --trace-scans): a mission that runs a scan matcher writes
+  // one CSV row per scan it processed into `path`, opened here, before start(), and closed
+  // with the run. kUnsupported (the default) when the mission has no scan matcher.
+  virtual Status open_scan_trace(const std::string& /*path*/) { return Status::kUnsupported; }
   // Files of the mission's own in --out DIR (an estimated trajectory, plots), after the run.
   virtual Status write_outputs(const std::string& /*out_dir*/) const { return Status::kOk; }
   // The mission's layer on render.png (estimated path, planner state), drawn over the true
