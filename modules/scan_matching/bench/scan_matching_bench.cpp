@@ -13,21 +13,19 @@ using namespace kestrel;
 using namespace kestrel::scan_matching;
 
 // A realistic indoor scan: a 6 x 4 m room with a doorway, a pillar and a railing, seen by a
-// UTM-30LX (1081 beams over 270 degrees) from `pose`, or with `urg04lx` by a URG-04LX (682
-// beams 2 pi / 1024 apart, 98 us apart, 4 m).
-LaserScan room_scan(const Pose2& pose, TimeUs t, bool urg04lx = false) {
+// UTM-30LX (1081 beams over 270 degrees) from `pose`.
+LaserScan room_scan(const Pose2& pose, TimeUs t) {
   LaserScan s;
   s.stamp = t;
-  s.beam_count = urg04lx ? 682 : 1081;
-  s.angle_step_rad = urg04lx ? 6.28318531f / 1024.0f : 4.71238898f / 1080.0f;
-  s.first_angle_rad = urg04lx ? -s.angle_step_rad * 681.0f / 2 : -2.35619449f;
-  s.max_range_mm = urg04lx ? 4000 : 30000;
-  s.beam_interval = Duration::from_us(urg04lx ? 98 : 17);
+  s.beam_count = 1081;
+  s.first_angle_rad = -2.35619449f;
+  s.angle_step_rad = 4.71238898f / 1080.0f;
+  s.max_range_mm = 30000;
   struct Seg { float ax, ay, bx, by; };
   const Seg segs[] = {{-3, -2, 3, -2}, {3, -2, 3, 2}, {3, 2, 0.5f, 2}, {-0.5f, 2, -3, 2}, {-3, 2, -3, -2},
                       {0.5f, 2, 0.5f, 3}, {-0.5f, 2, -0.5f, 3}, {1.2f, 0.3f, 1.5f, 0.3f}, {1.5f, 0.3f, 1.5f, 0.6f},
                       {1.2f, 0.6f, 1.5f, 0.6f}, {1.2f, 0.3f, 1.2f, 0.6f}, {-2, -1, -2, 1}};
-  for (int i = 0; i < s.beam_count; ++i) {
+  for (int i = 0; i < 1081; ++i) {
     const float a = pose.theta + s.angle_of(static_cast<std::size_t>(i));
     const float dx = std::cos(a), dy = std::sin(a);
     float best = 1e9f;
@@ -42,8 +40,7 @@ LaserScan room_scan(const Pose2& pose, TimeUs t, bool urg04lx = false) {
       if (j == 11 && i % 3 == 0) continue;
       if (t1 > 0.02f && u >= 0 && u <= 1 && t1 < best) best = t1;
     }
-    const float reach = urg04lx ? 3.9f : 29.0f;
-    s.range_mm[static_cast<std::size_t>(i)] = best < reach ? static_cast<uint16_t>(std::lround(best * 1000)) : 0;
+    s.range_mm[static_cast<std::size_t>(i)] = best < 29.0f ? static_cast<uint16_t>(std::lround(best * 1000)) : 0;
   }
   return s;
 }
@@ -81,29 +78,6 @@ void BM_PaperMulti(benchmark::State& st) { paper_config(st, true); }
 void BM_PaperExhaustive(benchmark::State& st) { paper_config(st, false); }
 BENCHMARK(BM_PaperMulti)->Name("scan_matcher/paper_000")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PaperExhaustive)->Name("scan_matcher/paper_000_exhaustive")->Unit(benchmark::kMicrosecond);
-
-// The points pass of every scan (sweep_points.hpp): ranges to points in the sensor frame,
-// instantaneous and deskewed (0.8 rad/s, 0.5 m/s): the difference is the deskew's own cost.
-void points_pass(benchmark::State& st, bool urg04lx, bool moving) {
-  const LaserScan scan = room_scan({0.1f, 0.05f, 0.1f}, TimeUs{}, urg04lx);
-  BeamTable table;
-  table.update(scan);
-  const SweepMotion motion = moving ? SweepMotion{0.1f, 0.5f, 0.1f, 0.8f} : SweepMotion{};
-  auto pts = std::make_unique<ScanPoints>();
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(sweep_to_points(scan, table, 20.0f, static_cast<float>(scan.max_range_mm), motion, *pts));
-    benchmark::ClobberMemory();
-  }
-  st.counters["points"] = pts->count;
-}
-void BM_PointsUrg(benchmark::State& st) { points_pass(st, true, false); }
-void BM_PointsDeskewedUrg(benchmark::State& st) { points_pass(st, true, true); }
-void BM_PointsUtm(benchmark::State& st) { points_pass(st, false, false); }
-void BM_PointsDeskewedUtm(benchmark::State& st) { points_pass(st, false, true); }
-BENCHMARK(BM_PointsUrg)->Name("scan_matcher/points_urg04lx")->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PointsDeskewedUrg)->Name("scan_matcher/points_deskewed_urg04lx")->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PointsUtm)->Name("scan_matcher/points_utm30lx")->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PointsDeskewedUtm)->Name("scan_matcher/points_deskewed_utm30lx")->Unit(benchmark::kMicrosecond);
 
 void BM_Contours350(benchmark::State& st) {
   Params p;

@@ -16,7 +16,6 @@
 #include "kestrel/scan_matching/correlative_search.hpp"
 #include "kestrel/scan_matching/covariance_estimator.hpp"
 #include "kestrel/scan_matching/local_map.hpp"
-#include "kestrel/scan_matching/sweep_points.hpp"
 
 namespace kestrel::scan_matching {
 
@@ -52,7 +51,7 @@ struct PosePrior {
   float position_std_m = -1;  // 1 sigma; negative: unknown (window from max acceleration)
   float heading_std_rad = -1;
   // The vehicle's velocity (world frame) and yaw rate at the stamp, held over the laser's
-  // sweep to move each beam's point to where the sensor was at the stamp (sweep_points.hpp).
+  // sweep to move each beam's point to where the sensor was at the stamp (ScanMatcher::deskew).
   // Zero: the scan is taken as instantaneous.
   float vx_mps = 0, vy_mps = 0, yaw_rate_radps = 0;
 };
@@ -77,10 +76,12 @@ class ScanMatcher {
   CorrelativeSearch& search() { return search_; }
 
  private:
-  bool to_points(const LaserScan& scan, const PosePrior* prior);
+  bool to_points(const LaserScan& scan);
+  void deskew(const LaserScan& scan, const PosePrior& prior);
   float laser_reach_m(const LaserScan& scan) const;
   void remember_key(const Pose2& pose, bool restart);
   float distance_to_nearest_key(const Pose2& p) const;
+  void update_beam_table(const LaserScan& scan);
 
   Params params_;
   bool synchronous_;
@@ -88,7 +89,11 @@ class ScanMatcher {
   CorrelativeSearch search_;
   CovarianceEstimator cov_;
   KeyScan key_;  // the scan being matched (points in sensor frame) and its pose
-  BeamTable beams_;  // the laser's beam directions, recomputed when its geometry changes
+  // Beam directions of the laser's geometry, computed when it changes (sin and cos per beam
+  // per scan would dominate the Verdex's software floating point).
+  std::array<float, kMaxBeams> beam_cos_{}, beam_sin_{};
+  float table_first_rad_ = 0, table_step_rad_ = 0;
+  uint16_t table_beams_ = 0;
   std::array<int32_t, 2 * 64 + 1> curve_{};
   Pose2 initial_;
   Pose2 last_pose_, prev_pose_;
