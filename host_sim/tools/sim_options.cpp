@@ -25,15 +25,10 @@ std::string sim_usage() {
   u +=
       "\n  --config    key = value file overriding vehicle.*, laser.*, imu.*, sim.* parameters\n"
       "  --record    also write the run as a CARMEN log (sim.log) with the true poses\n"
-      "  --trace-scans  also write scan_trace.csv: one row per scan the autonomy stack processed\n"
-      "              (hover, waypoints, explore), with a header row: t_s, the match's flags (as\n"
-      "              an integer and as rejected,lost,degenerate,key_scan,window_clamped,\n"
-      "              map_restarted), its pose x,y,theta, covariance cov_xx,cov_yy,cov_xy,cov_tt,\n"
-      "              score, overlap, points, axis_ratio, major_axis_rad; the filter after the\n"
-      "              update nav_t_s, nav_x, nav_y, nav_vx, nav_vy, nav_heading, nav_std_x,\n"
-      "              nav_std_y, nav_std_heading; the true state at t_s true_x, true_y, true_yaw,\n"
-      "              true_vx, true_vy; match_err_m, match_err_theta and nav_err_m (the filter\n"
-      "              against the truth at nav_t_s). Metres, radians, seconds; off by default\n";
+      "  --trace-scans  also write scan_trace.csv (hover, waypoints, explore): one row per scan\n"
+      "              the autonomy stack processed, with the match, the filter after the update,\n"
+      "              the true state and their errors; the header row names the columns, which\n"
+      "              host_sim/flight/include/kestrel/flight/scan_trace.hpp documents. Off by default\n";
   return u;
 }
 

@@ -208,7 +208,6 @@ Status AutonomyMission::start(sim::Simulation& sim) {
   const Status s = stack_->start();
   if (s != Status::kOk) failure_ = std::string("autonomy stack start: ") + to_string(s);
   samples_.reserve(200000);
-  vel_errs_.reserve(200000);
   return s;
 }
 
@@ -253,8 +252,9 @@ void AutonomyMission::score(sim::Simulation& sim) {
   s.true_vel = truth.velocity_mps;
   s.est_yaw = nav.heading_rad;
   s.true_yaw = truth.yaw_rad;
-  pos_err_sum_ += (s.est_pos - s.true_pos).norm();
-  vel_errs_.push_back((s.est_vel - s.true_vel).norm());
+  // Non-finite samples are refused by both (a NaN estimate shows as fewer samples).
+  (void)nav_error_.add({nav.stamp, s.est_pos, s.est_vel}, {nav.stamp, s.true_pos, s.true_vel});
+  (void)drift_.add(s.est_pos.head<2>(), s.true_pos.head<2>(), !truth.on_ground);
   samples_.push_back(s);
 }
 
@@ -272,18 +272,18 @@ double AutonomyMission::hover_rms_m() const {
 }
 
 void AutonomyMission::metrics(sim::MissionMetrics& out) const {
-  const double n = static_cast<double>(samples_.size());
-  double vel_mean = 0, vel_sq = 0;
-  for (double e : vel_errs_) {
-    vel_mean += e;
-    vel_sq += e * e;
-  }
-  vel_mean = n > 0 ? vel_mean / n : std::nan("");
-  const double vel_std = n > 1 ? std::sqrt(std::max(0.0, vel_sq / n - vel_mean * vel_mean)) : std::nan("");
+  const metrics::EkfErrorStats nav = nav_error_.stats();
+  const bool have = nav.position_m.count > 0;
+  const double nan = std::nan("");
   if (options_.kind == mission::MissionKind::kHover) out.emplace_back("hover_rms_m", hover_rms_m());
-  out.emplace_back("pos_err_mean_m", n > 0 ? pos_err_sum_ / n : std::nan(""));
-  out.emplace_back("vel_err_mean_mps", vel_mean);
-  out.emplace_back("vel_err_std_mps", vel_std);
+  out.emplace_back("pos_err_mean_m", have ? nav.position_m.mean : nan);
+  out.emplace_back("vel_err_mean_mps", have ? nav.velocity_mps.mean : nan);
+  out.emplace_back("vel_err_std_mps", nav.velocity_mps.count > 1 ? nav.velocity_mps.std : nan);
+  const metrics::HorizontalDrift d = drift_.result();
+  out.emplace_back("pos_err_xy_max_m", d.airborne_m.count > 0 ? d.airborne_m.max : nan);
+  out.emplace_back("pos_err_xy_far_m", d.samples > 0 ? d.far_error_m : nan);
+  out.emplace_back("far_from_start_m", d.samples > 0 ? d.far_from_start_m : nan);
+  out.emplace_back("pos_err_xy_final_m", d.samples > 0 ? d.final_error_m : nan);
   out.emplace_back("heap_allocs_after_arm", static_cast<double>(allocs_in_loop_));
   out.emplace_back("delay_s", options_.delay_s);
   out.emplace_back("state_history", options_.use_measurement_time ? 1.0 : 0.0);

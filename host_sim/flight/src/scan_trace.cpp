@@ -72,7 +72,10 @@ void ScanTrace::write(const scan_matching::ScanMatch& match, const NavState& fil
   if (file_ == nullptr) return;
   char row[kRowMax];
   const int n = format_row(row, sizeof row, match, filter, truth_at_scan, truth_at_nav);
-  if (n < 0 || static_cast<std::size_t>(n) >= sizeof row || std::fprintf(file_, "%s\n", row) < 0) failed_ = true;
+  if (n < 0 || static_cast<std::size_t>(n) >= sizeof row || std::fprintf(file_, "%s\n", row) < 0) {
+    failed_ = true;  // flush() reports it; the row is not counted
+    return;
+  }
   ++rows_;
 }
 

@@ -21,6 +21,8 @@
 #include "kestrel/autonomy/autonomy_stack.hpp"
 #include "kestrel/flight/delayed_laser.hpp"
 #include "kestrel/flight/scan_trace.hpp"
+#include "kestrel/metrics/ekf_error_stats.hpp"
+#include "kestrel/metrics/horizontal_drift.hpp"
 #include "kestrel/sim/mission.hpp"
 #include "kestrel/sim/mission_registry.hpp"
 
@@ -84,8 +86,8 @@ class AutonomyMission final : public sim::Mission {
   std::vector<EstimateSample> samples_;
   double hover_sq_sum_ = 0;
   uint64_t hover_n_ = 0;
-  double pos_err_sum_ = 0;
-  std::vector<double> vel_errs_;
+  metrics::EkfErrorAccumulator nav_error_;
+  metrics::HorizontalDriftAccumulator drift_;
   mission::Phase last_phase_ = mission::Phase::kIdle;
   std::vector<std::pair<double, std::string>> phase_log_;
   ScanTrace trace_;  // --trace-scans (scan_trace.hpp); closed unless asked for

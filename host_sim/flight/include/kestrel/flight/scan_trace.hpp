@@ -52,7 +52,7 @@ class ScanTrace {
              const sim::VehicleState* truth_at_nav);
   // Flushes; kIoError if any write failed.
   Status flush() const;
-  std::size_t rows() const { return rows_; }
+  std::size_t rows() const { return rows_; }  // rows written (a failed or truncated one is not)
 
  private:
   std::FILE* file_ = nullptr;
