@@ -43,6 +43,25 @@ TEST(Explorer, KindsParseAndPrint) {
   EXPECT_NE(all[2]->planner(), nullptr);
 }
 
+// The margins may be set below their defaults together: the limiter's stop distance is checked
+// against the clearance the explorer is given, not against the planner's defaults.
+TEST(Explorer, SmallerMarginsConfigureWhenConsistent) {
+  const BeamGeometry g = BeamGeometry::of(uniform_scan(kUrg, 2000));
+  Params p;
+  p.srt.clearance_m = 0.35f;
+  p.approach.stop_distance_m = 0.35f;
+  p.wall.target_range_m = 0.95f;
+  p.wall.safe_range_m = 0.6f;
+  auto b = std::make_unique<BlendExplorer>();
+  auto s = std::make_unique<SrtExplorer>();
+  EXPECT_EQ(b->configure(p, g), Status::kOk);
+  EXPECT_EQ(s->configure(p, g), Status::kOk);
+  p.approach.stop_distance_m = 0.36f;  // the limiter would keep the vehicle off its waypoints
+  EXPECT_EQ(b->configure(p, g), Status::kInvalidArgument);
+  p.approach.enabled = false;          // ... unless there is no limiter
+  EXPECT_EQ(b->configure(p, g), Status::kOk);
+}
+
 TEST(BlendExplorer, CommandIsWallFollowingPlusFrontierVelocityTowardsTheWaypoint) {
   auto ex = std::make_unique<BlendExplorer>();
   Params p;

@@ -72,5 +72,33 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, hover, h), "");
 }
 
+// The explorer's distances from laser returns (README, Exploration: the same physical margins
+// when the laser sees walls' faces), each to its own parameter.
+TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
+  sim::MissionOptions margins{{{"wall_target_m", "0.95"}, {"wall_safe_m", "0.6"},
+                               {"srt_clearance_m", "0.35"}, {"approach_stop_m", "0.3"}}};
+  FlightOptions m;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, margins, m), "");
+  EXPECT_FLOAT_EQ(m.stack.explorer.wall.target_range_m, 0.95f);
+  EXPECT_FLOAT_EQ(m.stack.explorer.wall.safe_range_m, 0.6f);
+  EXPECT_FLOAT_EQ(m.stack.explorer.srt.clearance_m, 0.35f);
+  EXPECT_FLOAT_EQ(m.stack.explorer.approach.stop_distance_m, 0.3f);
+  EXPECT_EQ(m.stack.explorer.validate(), Status::kOk);
+  // Each value valid alone, the pair not (r_safe above r_t): refused when the stack starts.
+  sim::MissionOptions crossed{{{"wall_target_m", "0.95"}, {"wall_safe_m", "1.2"}}};
+  FlightOptions n;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, crossed, n), "");
+  EXPECT_EQ(n.stack.explorer.validate(), Status::kInvalidArgument);
+  for (const sim::MissionOptions& bad :
+       {sim::MissionOptions{{{"srt_clearance_m", "0"}}}, sim::MissionOptions{{{"approach_stop_m", "-0.1"}}},
+        sim::MissionOptions{{{"wall_target_m", "far"}}}, sim::MissionOptions{{{"wall_safe_m", "6"}}}}) {
+    FlightOptions g;
+    EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, bad, g), "") << bad.values.begin()->first;
+  }
+  // Explore's only.
+  FlightOptions h;
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, margins, h), "");
+}
+
 }  // namespace
 }  // namespace kestrel::flight

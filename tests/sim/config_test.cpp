@@ -32,6 +32,10 @@ TEST(ConfigFile, ErrorsNameTheLine) {
   ASSERT_EQ(bad.parse("imu.rate_hz = 5\n", "c.cfg"), "");
   SimConfig cfg2;
   EXPECT_EQ(cfg2.apply(bad), "imu.rate_hz must be in [10, 1000]");
+  ConfigFile half;
+  ASSERT_EQ(half.parse("sim.laser_sees_wall_thickness = 0.5\n", "c.cfg"), "");
+  SimConfig cfg3;
+  EXPECT_EQ(cfg3.apply(half), "sim.laser_sees_wall_thickness must be 0 or 1");
   EXPECT_NE(ConfigFile().load("/nonexistent.cfg").find("/nonexistent.cfg"), std::string::npos);
 }
 
@@ -47,7 +51,7 @@ TEST(ConfigFile, ShippedExampleHoldsEveryDefault) {
   SimConfig cfg;
   ASSERT_EQ(cfg.apply(f), "");
   const SimConfig defaults;
-  EXPECT_EQ(f.entries().size(), VehicleParams::kBindingCount + LaserParams::kBindingCount + ImuParams::kBindingCount + 4);
+  EXPECT_EQ(f.entries().size(), VehicleParams::kBindingCount + LaserParams::kBindingCount + ImuParams::kBindingCount + 5);
   EXPECT_DOUBLE_EQ(cfg.vehicle.k_thrust, defaults.vehicle.k_thrust);
   EXPECT_DOUBLE_EQ(cfg.vehicle.attitude_tau_s, defaults.vehicle.attitude_tau_s);
   EXPECT_DOUBLE_EQ(cfg.laser.first_angle_rad, defaults.laser.first_angle_rad);
@@ -78,6 +82,13 @@ TEST(ConfigFile, ShippedExperimentConfigsApply) {
   EXPECT_EQ(b.imu.gyro_bias_std, 0.0);
   EXPECT_EQ(b.imu.gyro_bias_walk, 0.0);
   EXPECT_EQ(b.imu.rate_hz, SimConfig{}.imu.rate_hz);
+
+  ConfigFile thick;
+  ASSERT_EQ(thick.load(dir + "thick_walls.cfg"), "");
+  SimConfig c;
+  EXPECT_EQ(c.laser_walls(), WallSurfaces::kCentreLines);
+  ASSERT_EQ(c.apply(thick), "");
+  EXPECT_EQ(c.laser_walls(), WallSurfaces::kBoxOutlines);
 }
 
 }  // namespace

@@ -44,6 +44,31 @@ TEST(RayCaster, NearestOfSeveralWallsAndCorners) {
   EXPECT_NEAR(rc.cast({2, 0, 1}, horiz(kPi / 4), 30).range_m, std::sqrt(2.0), 1e-9);
 }
 
+// sim.laser_sees_wall_thickness = 1: walls are boxes for the laser as for the collision
+// checker, so a beam along a wall's line meets its end and a doorway between two walls is the
+// gap between their boxes. Glass and railings stay on their lines.
+TEST(RayCaster, WallsSeenAsBoxOutlinesHaveTheirThickness) {
+  const World w = make("start 0 0 1 0\nwall 0 0 4 0\nwall 5 0 9 0\nwall 2 -5 2 -3 glass\n");
+  const double half = w.wall_thickness_m / 2;
+  RayCaster lines(w), boxes(w, 1.0, WallSurfaces::kBoxOutlines);
+  // Along the line of the walls, from outside: a centre line is grazed and unseen; the box's
+  // end cap is half a thickness out.
+  EXPECT_EQ(lines.cast({-3, 0, 1}, horiz(0), 30).kind, RayHit::Kind::kNone);
+  EXPECT_NEAR(boxes.cast({-3, 0, 1}, horiz(0), 30).range_m, 3 - half, 1e-9);
+  // Standing in the doorway on the walls' line: both jambs' end caps.
+  EXPECT_NEAR(boxes.cast({4.5, 0, 1}, horiz(0), 30).range_m, 0.5 - half, 1e-9);
+  EXPECT_NEAR(boxes.cast({4.5, 0, 1}, horiz(kPi), 30).range_m, 0.5 - half, 1e-9);
+  // Across a wall: its face, half a thickness before the centre line.
+  EXPECT_NEAR(lines.cast({3, -2, 1}, horiz(kPi / 2), 30).range_m, 2, 1e-9);
+  EXPECT_NEAR(boxes.cast({3, -2, 1}, horiz(kPi / 2), 30).range_m, 2 - half, 1e-9);
+  // Through the doorway's middle nothing is hit either way.
+  EXPECT_EQ(boxes.cast({4.5, -2, 1}, horiz(kPi / 2), 30).kind, RayHit::Kind::kNone);
+  // Glass stays a pane on its line: the beam passes.
+  EXPECT_EQ(boxes.cast({0, -4, 1}, horiz(0), 30).kind, RayHit::Kind::kNone);
+  // Each opaque wall is its four faces; the glass one segment.
+  EXPECT_EQ(boxes.grid().segments().size(), 4u + 4 + 1);
+}
+
 TEST(RayCaster, GlassLetsTheBeamThrough) {
   RayCaster rc(make("start 0 0 1 0\nwall 2 -5 2 5 glass\nwall 7 -5 7 5\n"));
   const RayHit h = rc.cast({0, 0, 1}, horiz(0), 30);
@@ -155,8 +180,9 @@ TEST(RayCaster, AgreesWithBruteForceOnRandomRays) {
       "start 1 1 1 0\nwall 0 0 20 0\nwall 20 0 20 12\nwall 20 12 0 12\nwall 0 12 0 0\n"
       "wall 7 0 7 5\nwall 7 7 7 12 glass\nwall 13 3 18 9 z=0:0.9\nbox 4 8 1.5 0.8 z=0:0.75 yaw=30\n"
       "pillar 15 3 0.4\npoly 10 9 12 9 11 11 z=0.5:1.7\n");
-  for (double cell : {0.5, 1.0, 3.0}) {
-    RayCaster rc(w, cell);
+  for (const auto& [cell, walls] : {std::pair{0.5, WallSurfaces::kCentreLines}, std::pair{1.0, WallSurfaces::kCentreLines},
+                                    std::pair{3.0, WallSurfaces::kCentreLines}, std::pair{1.0, WallSurfaces::kBoxOutlines}}) {
+    RayCaster rc(w, cell, walls);
     Rng rng(99);
     int cast = 0;
     for (int i = 0; i < 3000; ++i) {

@@ -61,14 +61,10 @@ void prism_center(const void* obj, ccd_vec3_t* out) {
 CollisionChecker::CollisionChecker(const World& world, const SegmentGrid& grid,
                                    double body_radius_m, double body_height_m)
     : grid_(grid), radius_(body_radius_m), height_(body_height_m) {
-  const double t = world.wall_thickness_m;
   for (const Wall& w : world.walls) {
-    const Eigen::Vector2d d = (w.b - w.a).normalized();
-    const Eigen::Vector2d n(-d.y() * t / 2, d.x() * t / 2);
+    const std::array<Eigen::Vector2d, 4> box = wall_outline(w, world.wall_thickness_m);
     Prism p;
-    // The thin box also extends half a thickness past each end, so corners close.
-    const Eigen::Vector2d a = w.a - d * (t / 2), b = w.b + d * (t / 2);
-    p.polygon = {a - n, b - n, b + n, a + n};
+    p.polygon.assign(box.begin(), box.end());
     p.z_min = w.z_min;
     p.z_max = w.z_max;
     p.line = w.line;

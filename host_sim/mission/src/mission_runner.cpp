@@ -9,6 +9,7 @@ RunResult run_mission(Simulation& sim, Mission& mission, Duration duration, cons
   if (r.status != Status::kOk) {
     r.end = sim.now();
     r.message = std::string("mission '") + mission.name() + "' did not start: " + to_string(r.status);
+    if (const std::string why = mission.failure(); !why.empty()) r.message += " (" + why + ")";
     return r;
   }
   const TimeUs start = sim.now();

@@ -15,7 +15,8 @@ std::string SimConfig::apply(ConfigFile& file) {
   ConfigBinding sb[] = {{"sim.command_delay_s", &command_delay_s},
                         {"sim.status_rate_hz", &status_rate_hz},
                         {"sim.truth_history_s", &truth_history_s},
-                        {"sim.ray_grid_cell_m", &ray_grid_cell_m}};
+                        {"sim.ray_grid_cell_m", &ray_grid_cell_m},
+                        {"sim.laser_sees_wall_thickness", &laser_sees_wall_thickness}};
   file.apply(sb, sizeof(sb) / sizeof(sb[0]));
   const std::string unknown = file.unknown_keys();
   if (!unknown.empty()) return unknown;
@@ -30,6 +31,7 @@ std::string SimConfig::validate() const {
   if (!(status_rate_hz >= 1 && status_rate_hz <= 1000)) return "sim.status_rate_hz must be in [1, 1000]";
   if (!(truth_history_s >= 0.1 && truth_history_s <= 60)) return "sim.truth_history_s must be in [0.1, 60]";
   if (!(ray_grid_cell_m >= 0.1 && ray_grid_cell_m <= 10)) return "sim.ray_grid_cell_m must be in [0.1, 10]";
+  if (laser_sees_wall_thickness != 0 && laser_sees_wall_thickness != 1) return "sim.laser_sees_wall_thickness must be 0 or 1";
   return "";
 }
 

@@ -5,8 +5,8 @@
 
 namespace kestrel::sim {
 
-RayCaster::RayCaster(const World& world, double cell_m)
-    : grid_(world.segments(), cell_m), ceiling_(world.ceiling_m) {
+RayCaster::RayCaster(const World& world, double cell_m, WallSurfaces walls)
+    : grid_(world.segments(walls), cell_m), ceiling_(world.ceiling_m) {
   for (const Obstacle& o : world.obstacles) polygons_.push_back(o.polygon);
   seen_.assign(grid_.segments().size(), 0);
 }

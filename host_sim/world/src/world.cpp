@@ -14,11 +14,18 @@ const char* to_string(Material m) {
   return "?";
 }
 
-std::vector<Segment> World::segments() const {
+std::vector<Segment> World::segments(WallSurfaces surfaces) const {
   std::vector<Segment> out;
   int piece = 0;
   for (const Wall& w : walls) {
-    out.push_back({w.a, w.b, w.z_min, w.z_max, w.material, w.return_probability, piece, -1});
+    if (surfaces == WallSurfaces::kBoxOutlines && w.material == Material::kOpaque && wall_thickness_m > 0) {
+      const std::array<Eigen::Vector2d, 4> box = wall_outline(w, wall_thickness_m);
+      for (std::size_t i = 0; i < box.size(); ++i)
+        out.push_back({box[i], box[(i + 1) % box.size()], w.z_min, w.z_max, w.material,
+                       w.return_probability, piece, -1});
+    } else {
+      out.push_back({w.a, w.b, w.z_min, w.z_max, w.material, w.return_probability, piece, -1});
+    }
     ++piece;
   }
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
@@ -53,6 +60,14 @@ Bounds2 World::bounds() const {
   for (const Obstacle& o : obstacles)
     for (const auto& p : o.polygon) grow(p);
   return b;
+}
+
+std::array<Eigen::Vector2d, 4> wall_outline(const Wall& wall, double thickness_m) {
+  const double h = thickness_m / 2;
+  const Eigen::Vector2d d = (wall.b - wall.a).normalized();
+  const Eigen::Vector2d n(-d.y() * h, d.x() * h);  // d turned left
+  const Eigen::Vector2d a = wall.a - d * h, b = wall.b + d * h;
+  return {a - n, b - n, b + n, a + n};
 }
 
 double polygon_signed_area(const std::vector<Eigen::Vector2d>& poly) {

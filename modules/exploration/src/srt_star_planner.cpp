@@ -30,6 +30,9 @@ Status SrtStarPlanner::configure(const SrtParams& srt, const GuidanceParams& gui
   Params check;
   check.srt = srt;
   check.guidance = guidance;
+  // The limiter's stop distance against the clearance is the explorer's check (Params::validate
+  // on the whole set); the default limiter here would refuse any clearance below its 0.4 m.
+  check.approach.enabled = false;
   if (check.validate() != Status::kOk) return Status::kInvalidArgument;
   srt_ = srt;
   guidance_ = guidance;

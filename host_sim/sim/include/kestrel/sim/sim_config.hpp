@@ -8,6 +8,7 @@
 #include "kestrel/sim/imu_params.hpp"
 #include "kestrel/sim/laser_params.hpp"
 #include "kestrel/sim/vehicle_params.hpp"
+#include "kestrel/sim/world.hpp"
 
 namespace kestrel::sim {
 
@@ -20,6 +21,15 @@ struct SimConfig {
   double status_rate_hz = 50;      // sim.status_rate_hz: autopilot status messages
   double truth_history_s = 4.0;    // sim.truth_history_s: how far back truth_at() reaches
   double ray_grid_cell_m = 1.0;    // sim.ray_grid_cell_m
+  // sim.laser_sees_wall_thickness: 1 = the laser meets a wall's faces and end caps (the box the
+  // collision checker uses, World::wall_thickness_m thick), 0 = its zero-thick centre line.
+  // 0 is the default every figure in the README was measured with; at 0 a doorway looks
+  // wall_thickness_m wider to the laser than it is to the vehicle, and a jamb seen edge-on is
+  // invisible (README, Exploration, "Not done").
+  double laser_sees_wall_thickness = 0;
+  WallSurfaces laser_walls() const {
+    return laser_sees_wall_thickness != 0 ? WallSurfaces::kBoxOutlines : WallSurfaces::kCentreLines;
+  }
 
   // Applies a parsed file on top of the current values; "" or "SOURCE:LINE: reason".
   std::string apply(ConfigFile& file);

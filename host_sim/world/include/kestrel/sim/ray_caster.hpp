@@ -32,7 +32,8 @@ struct RayHit {
 
 class RayCaster {
  public:
-  explicit RayCaster(const World& world, double cell_m = 1.0);
+  explicit RayCaster(const World& world, double cell_m = 1.0,
+                     WallSurfaces walls = WallSurfaces::kCentreLines);
 
   // `dir` need not be unit length. `railing_rng` decides railing returns; with nullptr a
   // railing returns when its probability is >= 0.5 (deterministic tests and the renderer).
