@@ -95,6 +95,11 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
     FlightOptions g;
     EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, bad, g), "") << bad.values.begin()->first;
   }
+  // The SRT's memory of where the vehicle has flown.
+  FlightOptions mem;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "on"}}}, mem), "");
+  EXPECT_TRUE(mem.stack.explorer.srt.prefer_unvisited);
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "yes"}}}, mem), "");
   // Explore's only.
   FlightOptions h;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, margins, h), "");

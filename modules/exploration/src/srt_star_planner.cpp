@@ -26,6 +26,25 @@ const char* to_string(PlannerMode m) {
   return "unknown";
 }
 
+std::size_t draw_frontier(const SrtStarTree& tree, uint16_t node, std::size_t live, const VisitedGrid* visited,
+                          Prng& prng) {
+  const IVector<Frontier>& all = tree.frontiers();
+  if (live == 0) return all.size();
+  if (visited != nullptr) {
+    std::size_t fresh = 0;
+    for (const Frontier& f : all) fresh += f.node == node && !visited->visited(f.position) ? 1 : 0;
+    if (fresh > 0) {
+      std::size_t k = prng.below(static_cast<uint32_t>(fresh));
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        if (all[i].node != node || visited->visited(all[i].position)) continue;
+        if (k == 0) return i;
+        --k;
+      }
+    }
+  }
+  return tree.frontier_index_of(node, prng.below(static_cast<uint32_t>(live)));
+}
+
 Status SrtStarPlanner::configure(const SrtParams& srt, const GuidanceParams& guidance, bool guarded) {
   Params check;
   check.srt = srt;
@@ -43,6 +62,7 @@ Status SrtStarPlanner::configure(const SrtParams& srt, const GuidanceParams& gui
 
 void SrtStarPlanner::reset() {
   tree_.clear();
+  visited_.clear();
   tree_.coverage_margin_m = srt_.coverage_margin_m;
   prng_.reseed(srt_.seed);
   mode_ = PlannerMode::kIdle;
@@ -65,6 +85,7 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
   if (!pose.finite()) return Status::kInvalidArgument;
   if (scan.beam_count == 0) return Status::kInvalidArgument;
   const uint32_t issued = waypoints_issued_;
+  visited_.mark({pose.x, pose.y});
 
   if (step_ != Step::kNone) {
     // An arrival step is under way: this call only continues it.
@@ -208,7 +229,7 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   const float min_step = 2.0f * guidance_.arrival_distance_m;
   const uint16_t min_step_mm = static_cast<uint16_t>(std::lround(min_step * 1000.0f));
   constexpr uint16_t kRays = SectorScan::kRaysPerSector;
-  frontier_ = tree_.frontier_index_of(current_, prng_.below(static_cast<uint32_t>(live_)));
+  frontier_ = draw_frontier(tree_, current_, live_, srt_.prefer_unvisited ? &visited_ : nullptr, prng_);
   const Frontier& f = tree_.frontier(frontier_);
   uint16_t n = 0;
   for (int dist = 0; dist <= srt_.ray_search_sectors && n == 0; ++dist) {
@@ -224,7 +245,9 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   }
   candidate_count_ = n;
   step_ = Step::kDraw;
-  return 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
+  // Choosing among the unvisited frontiers is two more passes over the list.
+  const uint32_t passes = srt_.prefer_unvisited ? 3 : 1;
+  return 1 + passes * static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
 }
 
 uint32_t SrtStarPlanner::draw_candidate() {

@@ -63,6 +63,8 @@ struct SrtParams {
                                           // closely while the estimate drifts)
   float coverage_margin_m = 0.05f;        // a frontier this deep inside another safe region is gone
   uint8_t max_attempts_per_frontier = 2;  // waypoints drawn for one frontier before it is dropped
+  bool prefer_unvisited = false;          // draw first among the frontiers where the vehicle has
+                                          // not flown (visited_grid.hpp; not in paper 002)
   uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
   uint32_t arrival_work_per_cycle = 15000;  // work units (about 100 Verdex instructions each,
                                             // work_units.hpp) of the arrival step per guidance

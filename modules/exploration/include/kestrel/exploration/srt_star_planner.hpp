@@ -15,6 +15,10 @@
 // in on the node (within d / 2). Exploration is finished when the root owns no frontier: the
 // waypoint stays on the root, so the vehicle returns to where it started.
 //
+// With srt.prefer_unvisited the frontier is drawn at random among those of the current node that
+// lie where the vehicle has not flown (VisitedGrid, kept across section V's restarts), and
+// among all of them only when none does; off, among all of them, as in paper 002.
+//
 // Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
 // and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
 // past never traps the planner); when the waypoint is not reached within the time limit, or
@@ -40,6 +44,7 @@
 #include "kestrel/exploration/prng.hpp"
 #include "kestrel/exploration/sector_scan.hpp"
 #include "kestrel/exploration/srt_star_tree.hpp"
+#include "kestrel/exploration/visited_grid.hpp"
 
 namespace kestrel::exploration {
 
@@ -54,6 +59,12 @@ const char* to_string(PlannerMode m);
 // kExhausted: a tree grown after a kTimeout or kTreeFull restart ran out of frontiers; it knew
 // only what it had seen since, so exploration starts once more from where the vehicle is.
 enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull, kExhausted };
+
+// Index (into tree.frontiers()) of one of `node`'s `live` frontiers, drawn at random: with a
+// `visited` grid among those that lie where the vehicle has not flown, when there are any;
+// else (or without a grid) among all of them. tree.frontiers().size() when `live` is 0.
+std::size_t draw_frontier(const SrtStarTree& tree, uint16_t node, std::size_t live, const VisitedGrid* visited,
+                          Prng& prng);
 
 class SrtStarPlanner {
  public:
@@ -85,6 +96,7 @@ class SrtStarPlanner {
   RestartReason last_restart_reason() const { return last_restart_; }
   uint32_t blocked_arrivals() const { return blocked_arrivals_; }  // see GuidanceParams::blocked_*
   TimeUs waypoint_time() const { return waypoint_time_; }
+  const VisitedGrid& visited() const { return visited_; }  // where the vehicle has flown
 
  private:
   enum class Step : uint8_t { kNone, kSectors, kTree, kPick, kDraw, kPath };
@@ -111,6 +123,7 @@ class SrtStarPlanner {
   GuidanceParams guidance_{};
   SrtStarTree tree_;
   SectorScan sectors_;
+  VisitedGrid visited_;  // cleared by reset(), not by section V's restarts
   Prng prng_{1};
   PlannerMode mode_ = PlannerMode::kIdle;
   Point2 waypoint_{};

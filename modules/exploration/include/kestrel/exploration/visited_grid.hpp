@@ -1,0 +1,43 @@
+#pragma once
+// Where the vehicle has flown, on a coarse bit grid that outlives the SRT-Star tree. Section
+// V's time limit erases the tree and the new root knows nothing of the rooms already explored:
+// its random frontier choice sends the vehicle back through them as often as on into rooms it
+// has never entered, and over 30 minutes that choice is what decides whether the last rooms
+// are reached (README, Exploration). With this memory the planner draws first among the
+// frontiers that lie where the vehicle has not been (SrtParams::prefer_unvisited).
+//
+// kSide x kSide cells of kCellM, centred on the first pose marked (64 m x 64 m: every built-in
+// world from its start); a mark sets the cell under the pose and its eight neighbours, so a
+// frontier counts as visited within about a cell and a half of the path flown. Outside the
+// grid nothing is marked and everything is unvisited. 512 bytes, no heap.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "kestrel/core/se2.hpp"
+
+namespace kestrel::exploration {
+
+class VisitedGrid {
+ public:
+  static constexpr int kSide = 64;
+  static constexpr float kCellM = 1.0f;
+
+  void clear();
+  // Marks the neighbourhood of (x, y), world frame; the first mark after clear() fixes the
+  // grid's centre. Non-finite positions are ignored.
+  void mark(Point2 p);
+  bool visited(Point2 p) const;
+  std::size_t marked_cells() const;
+
+ private:
+  // Cell of p, or false outside the grid (or before the first mark).
+  bool cell_of(Point2 p, int& ix, int& iy) const;
+  void set(int ix, int iy);
+
+  std::array<uint64_t, kSide * kSide / 64> bits_{};
+  Point2 origin_{};  // world position of cell (0, 0)'s corner
+  bool anchored_ = false;
+};
+
+}  // namespace kestrel::exploration
