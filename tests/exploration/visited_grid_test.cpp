@@ -110,11 +110,17 @@ TEST(SrtStarPlanner, VisitedGridSurvivesRestartsAndGoesWithReset) {
   bool fresh = false;
   ASSERT_EQ(planner->update({0, 0, 0}, room.scan(urg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
   EXPECT_TRUE(planner->visited().visited({0, 0}));
-  // Stuck 0.1 m from the root past the time limit: the tree is erased, the memory is not.
+  ASSERT_EQ(planner->mode(), PlannerMode::kForward);
+  const Point2 given_up = planner->waypoint();
+  ASSERT_GT(std::hypot(given_up.x, given_up.y), 1.6f);  // beyond the marks around the root
+  EXPECT_FALSE(planner->visited().visited(given_up));
+  // Stuck 0.1 m from the root past the time limit: the tree is erased, the memory is not, and
+  // the waypoint it gave up counts as visited (else the next tree would draw it first again).
   const Pose2 stuck{0.1f, 0, 0};
   ASSERT_EQ(planner->update(stuck, room.scan(urg, 0.1, 0, 0), TimeUs{6000000}, fresh), Status::kOk);
   ASSERT_EQ(planner->restarts(), 1u);
   EXPECT_TRUE(planner->visited().visited({0, 0}));
+  EXPECT_TRUE(planner->visited().visited(given_up));
   planner->reset();
   EXPECT_FALSE(planner->visited().visited({0, 0}));
 }

@@ -123,6 +123,11 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     } else if (arrived) {
       if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
     } else if (late) {
+      if (mode_ == PlannerMode::kForward) {
+        // Not reached in time: counted as visited, or the next tree would draw it first again.
+        visited_.mark(waypoint_);
+        visited_.mark(pursued_);
+      }
       restart_tree(RestartReason::kTimeout);
       // The scan was accepted as the arrival's a moment ago, so it divides into sectors.
       if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
@@ -423,6 +428,7 @@ uint32_t SrtStarPlanner::check_path(uint32_t budget, TimeUs now) {
     step_ = Step::kNone;
   } else if (clear) {
     Frontier& f = tree_.frontier(frontier_);
+    pursued_ = f.position;
     if (++f.attempts >= srt_.max_attempts_per_frontier) tree_.remove_frontier(frontier_);
     mode_ = PlannerMode::kForward;
     set_waypoint(path_.target, now);

@@ -17,7 +17,8 @@
 //
 // With srt.prefer_unvisited the frontier is drawn at random among those of the current node that
 // lie where the vehicle has not flown (VisitedGrid, kept across section V's restarts), and
-// among all of them only when none does; off, among all of them, as in paper 002.
+// among all of them only when none does; off, among all of them, as in paper 002. A forward
+// waypoint the time limit gives up counts as visited, with its frontier.
 //
 // Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
 // and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
@@ -148,6 +149,7 @@ class SrtStarPlanner {
   uint32_t last_work_ = 0;
   std::size_t live_ = 0;        // frontiers of the current node not yet tried in this choice
   std::size_t frontier_ = 0;    // index of the frontier being tried
+  Point2 pursued_{};            // the frontier the forward waypoint was drawn towards
   std::array<uint16_t, 2 * SectorScan::kRaysPerSector> candidates_{};  // sector * kRays + ray
   uint16_t candidate_count_ = 0;
   struct PathCheck {
