@@ -2,6 +2,7 @@
 // approach limiter, the perception range and the flight height.
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <utility>
 
 #include "kestrel/flight/autonomy_mission.hpp"
@@ -9,9 +10,16 @@
 namespace kestrel::flight {
 namespace {
 
+// Options built by emplace: GCC 12 at -O3 for ARM misreads map[key] = "literal" as an
+// overlapping memcpy (-Werror=restrict).
+sim::MissionOptions options(std::initializer_list<std::pair<const char*, const char*>> kv) {
+  sim::MissionOptions o;
+  for (const auto& [k, v] : kv) o.values.emplace(k, v);
+  return o;
+}
+
 TEST(FlightOptions, KeepOutBoxesParseIntoTheExplorerParameters) {
-  sim::MissionOptions opt;
-  opt.values["keepout"] = "2,8.8,5,9.2;10,10,11,11.5";
+  const sim::MissionOptions opt = options({{"keepout", "2,8.8,5,9.2;10,10,11,11.5"}});
   FlightOptions f;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
   const exploration::SrtParams& srt = f.stack.explorer.srt;
@@ -34,18 +42,14 @@ TEST(FlightOptions, MalformedKeepOutsAreRefusedWithAReason) {
   EXPECT_EQ(parse_keep_outs("0,0,1,1;2,2,3,3", srt), "");
   EXPECT_EQ(srt.keep_out_count, 2);
   // Not an option of the other missions.
-  sim::MissionOptions opt;
-  opt.values["keepout"] = "0,0,1,1";
+  const sim::MissionOptions opt = options({{"keepout", "0,0,1,1"}});
   FlightOptions f;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, opt, f), "");
 }
 
 TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
-  sim::MissionOptions opt;
-  opt.values["approach"] = "off";
-  opt.values["approach_blind_mps"] = "0.2";
-  opt.values["srt_range_m"] = "5";
-  opt.values["altitude_m"] = "1.2";
+  const sim::MissionOptions opt =
+      options({{"approach", "off"}, {"approach_blind_mps", "0.2"}, {"srt_range_m", "5"}, {"altitude_m", "1.2"}});
   FlightOptions f;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
   EXPECT_FALSE(f.stack.explorer.approach.enabled);
@@ -58,18 +62,14 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
                                  {"srt_range_m", "0"},
                                  {"altitude_m", "0.1"},
                                  {"altitude_m", "high"}}) {
-    sim::MissionOptions b;
-    b.values[key] = bad;
+    const sim::MissionOptions b = options({{key, bad}});
     FlightOptions g;
     EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, b, g), "") << key << "=" << bad;
   }
   // The flight height is every flying mission's; the explorer's knobs are explore's only.
-  sim::MissionOptions hover;
-  hover.values["altitude_m"] = "1.5";
   FlightOptions h;
-  EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, hover, h), "");
-  hover.values["approach"] = "on";
-  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, hover, h), "");
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}}), h), "");
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}, {"approach", "on"}}), h), "");
 }
 
 // The explorer's distances from laser returns (README, Exploration: the same physical margins

@@ -177,7 +177,10 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       // The explorer's distances from laser returns (README, Exploration, "Not done": the
       // same physical margins when the laser sees walls' faces, sim.laser_sees_wall_thickness).
       // Their relations (r_safe < r_t, stop <= clearance) are checked when the stack starts.
-      if (!parse_double(value, d) || d <= 0 || d > 5) return key + ": '" + value + "' is not a distance in (0, 5] m";
+      if (!parse_double(value, d) || d <= 0 || d > 5) {
+        std::string why = key;  // append, not operator+: see parse_keep_outs
+        return why.append(": '").append(value).append("' is not a distance in (0, 5] m");
+      }
       explorer_distance(key, out.stack.explorer) = static_cast<float>(d);
     } else if (key == "altitude_m" && kind != mission::MissionKind::kWaypoints) {
       // Paper 000 section 3.3: the laser sees only its own plane; an operator picks the height
