@@ -63,19 +63,13 @@ bool parse_double(const std::string& s, double& out) {
   return end != s.c_str() && *end == '\0' && std::isfinite(out);
 }
 
-constexpr const char* kExplorerDistances[] = {"wall_target_m", "wall_safe_m", "srt_clearance_m", "approach_stop_m"};
-
-bool is_explorer_distance(const std::string& key) {
-  for (const char* k : kExplorerDistances)
-    if (key == k) return true;
-  return false;
-}
-
-float& explorer_distance(const std::string& key, exploration::Params& p) {
-  if (key == "wall_target_m") return p.wall.target_range_m;
-  if (key == "wall_safe_m") return p.wall.safe_range_m;
-  if (key == "srt_clearance_m") return p.srt.clearance_m;
-  return p.approach.stop_distance_m;
+// The explorer's distances from laser returns settable by name, or nullptr for another key.
+float* explorer_distance(const std::string& key, exploration::Params& p) {
+  if (key == "wall_target_m") return &p.wall.target_range_m;
+  if (key == "wall_safe_m") return &p.wall.safe_range_m;
+  if (key == "srt_clearance_m") return &p.srt.clearance_m;
+  if (key == "approach_stop_m") return &p.approach.stop_distance_m;
+  return nullptr;
 }
 
 }  // namespace
@@ -173,7 +167,8 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "approach_blind_mps" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d < 0 || d > 10) return "approach_blind_mps: '" + value + "' is not a speed in [0, 10] m/s";
       out.stack.explorer.approach.blind_speed_mps = static_cast<float>(d);
-    } else if (is_explorer_distance(key) && kind == mission::MissionKind::kExplore) {
+    } else if (float* distance = explorer_distance(key, out.stack.explorer);
+               distance != nullptr && kind == mission::MissionKind::kExplore) {
       // The explorer's distances from laser returns (README, Exploration, "Not done": the
       // same physical margins when the laser sees walls' faces, sim.laser_sees_wall_thickness).
       // Their relations (r_safe < r_t, stop <= clearance) are checked when the stack starts.
@@ -181,7 +176,7 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
         std::string why = key;  // append, not operator+: see parse_keep_outs
         return why.append(": '").append(value).append("' is not a distance in (0, 5] m");
       }
-      explorer_distance(key, out.stack.explorer) = static_cast<float>(d);
+      *distance = static_cast<float>(d);
     } else if (key == "altitude_m" && kind != mission::MissionKind::kWaypoints) {
       // Paper 000 section 3.3: the laser sees only its own plane; an operator picks the height
       // that clears what it cannot see (iarc-arena's 1.0 m stair railing) and still sees the rest.

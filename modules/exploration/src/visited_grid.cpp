@@ -1,5 +1,6 @@
 #include "kestrel/exploration/visited_grid.hpp"
 
+#include <bit>
 #include <cmath>
 
 namespace kestrel::exploration {
@@ -46,7 +47,7 @@ bool VisitedGrid::visited(Point2 p) const {
 
 std::size_t VisitedGrid::marked_cells() const {
   std::size_t n = 0;
-  for (uint64_t w : bits_) n += static_cast<std::size_t>(__builtin_popcountll(w));
+  for (uint64_t w : bits_) n += static_cast<std::size_t>(std::popcount(w));
   return n;
 }
 
