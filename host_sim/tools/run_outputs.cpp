@@ -37,6 +37,12 @@ Status write_metrics(const std::string& path, const SimOptions& opt, Simulation&
   else j.number("coverage_t90_s", std::numeric_limits<double>::quiet_NaN());
   j.integer("rooms_entered", rec.rooms_entered());
   j.integer("rooms_total", static_cast<int64_t>(sim.world().rooms.size()));
+  // Which rooms a flight missed, not only how many: each room's first entry, null if never.
+  j.begin_object("room_entry_s");
+  const std::vector<double>& entry = rec.room_entry_s();
+  for (std::size_t i = 0; i < entry.size() && i < sim.world().rooms.size(); ++i)
+    j.number(sim.world().rooms[i].name.c_str(), entry[i] >= 0 ? entry[i] : std::numeric_limits<double>::quiet_NaN());
+  j.end_object();
   if (rec.t_all_rooms_s() >= 0) j.number("t_all_rooms_s", rec.t_all_rooms_s());
   else j.number("t_all_rooms_s", std::numeric_limits<double>::quiet_NaN());
   j.number("reachable_area_m2", rec.free_space().reachable_area_m2());

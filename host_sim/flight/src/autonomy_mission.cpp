@@ -320,10 +320,21 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("setpoints_sent", c.setpoints_sent);
   out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
   out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);
+  // When each phase began (its first time): an explore phase that ended well before
+  // explore_s ran out of frontiers.
+  for (std::size_t i = 0; i < phase_log_.size(); ++i) {
+    bool first = true;
+    for (std::size_t k = 0; k < i; ++k) first = first && phase_log_[k].second != phase_log_[i].second;
+    if (!first) continue;
+    std::string key = "phase_start_s.";
+    key.append(phase_log_[i].second);
+    out.emplace_back(std::move(key), phase_log_[i].first);
+  }
   if (const exploration::Explorer* e = stack_->explorer(); e != nullptr) {
     out.emplace_back("approach_scaled", e->status().approach_scaled);
     out.emplace_back("approach_stops", e->status().approach_stops);
     out.emplace_back("return_setpoints_unbounded", c.guidance_rejected);
+    out.emplace_back("explorer_finished", e->finished() ? 1.0 : 0.0);
     if (e->planner() != nullptr) {
       out.emplace_back("srt_restarts", e->planner()->restarts());
       out.emplace_back("srt_blocked_arrivals", e->planner()->blocked_arrivals());
