@@ -100,6 +100,13 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "on"}}}, mem), "");
   EXPECT_TRUE(mem.stack.explorer.srt.prefer_unvisited);
   EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "yes"}}}, mem), "");
+  // Frontiers kept beside walls.
+  FlightOptions rescue;
+  EXPECT_FALSE(rescue.stack.explorer.srt.rescue_frontiers);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "on"}}}, rescue), "");
+  EXPECT_TRUE(rescue.stack.explorer.srt.rescue_frontiers);
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "maybe"}}}, rescue),
+            "srt_rescue: expected on or off, got 'maybe'");
   // Explore's only.
   FlightOptions h;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, margins, h), "");

@@ -72,6 +72,14 @@ float* explorer_distance(const std::string& key, exploration::Params& p) {
   return nullptr;
 }
 
+// The explorer's on/off options, or nullptr for another key.
+bool* explorer_switch(const std::string& key, exploration::Params& p) {
+  if (key == "approach") return &p.approach.enabled;
+  if (key == "srt_memory") return &p.srt.prefer_unvisited;
+  if (key == "srt_rescue") return &p.srt.rescue_frontiers;
+  return nullptr;
+}
+
 }  // namespace
 
 std::string parse_keep_outs(const std::string& text, exploration::SrtParams& srt) {
@@ -155,15 +163,16 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       out.stack.mission.explore_time_limit_s = static_cast<float>(d);
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
-    } else if (key == "approach" && kind == mission::MissionKind::kExplore) {
-      if (value != "on" && value != "off") return "approach: expected on or off, got '" + value + "'";
-      out.stack.explorer.approach.enabled = value == "on";
+    } else if (bool* on = explorer_switch(key, out.stack.explorer); on != nullptr && kind == mission::MissionKind::kExplore) {
+      if (value != "on" && value != "off") {
+        std::string e = key;
+        e.append(": expected on or off, got '").append(value).append("'");
+        return e;
+      }
+      *on = value == "on";
     } else if (key == "srt_range_m" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d <= 0 || d >= 65) return "srt_range_m: '" + value + "' is not a range in (0, 65) m";
       out.stack.explorer.srt.perception_range_m = static_cast<float>(d);
-    } else if (key == "srt_memory" && kind == mission::MissionKind::kExplore) {
-      if (value != "on" && value != "off") return "srt_memory: expected on or off, got '" + value + "'";
-      out.stack.explorer.srt.prefer_unvisited = value == "on";
     } else if (key == "approach_blind_mps" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d < 0 || d > 10) return "approach_blind_mps: '" + value + "' is not a speed in [0, 10] m/s";
       out.stack.explorer.approach.blind_speed_mps = static_cast<float>(d);
@@ -338,6 +347,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
     if (e->planner() != nullptr) {
       out.emplace_back("srt_restarts", e->planner()->restarts());
       out.emplace_back("srt_blocked_arrivals", e->planner()->blocked_arrivals());
+      out.emplace_back("srt_frontiers_handed_up", e->planner()->frontiers_handed_up());
     }
   }
   const Scheduler& s = stack_->scheduler();

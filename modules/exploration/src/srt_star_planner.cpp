@@ -10,6 +10,9 @@ namespace kestrel::exploration {
 namespace {
 // Coming this much nearer the waypoint is progress (blocked arrivals).
 constexpr float kProgressM = 0.05f;
+// Ancestors a frontier with no path from its node is offered to, nearest first: enough to
+// leave a doorway (the parent or grandparent in practice), and a bounded cost in one slice.
+constexpr int kHandUpLevels = 8;
 }  // namespace
 
 const char* to_string(PlannerMode m) {
@@ -73,6 +76,7 @@ void SrtStarPlanner::reset() {
   straight_to_parent_ = false;
   waypoints_issued_ = 0;
   blocked_arrivals_ = 0;
+  frontiers_handed_up_ = 0;
   restarts_ = 0;
   last_restart_ = RestartReason::kNone;
   step_ = Step::kNone;
@@ -142,6 +146,8 @@ void SrtStarPlanner::restart_tree(RestartReason why) {
   tree_.clear();
   aligning_ = false;
   straight_to_parent_ = false;
+  pursuing_handed_up_ = false;
+  grown_by_handed_up_.reset();
   mode_ = PlannerMode::kIdle;
   current_ = kNoNode;
   target_node_ = kNoNode;
@@ -217,6 +223,8 @@ uint32_t SrtStarPlanner::begin_node() {
     step_ = Step::kNone;
     return 0;
   }
+  if (!job_from_idle_ && pursuing_handed_up_) grown_by_handed_up_.set(id);
+  pursuing_handed_up_ = false;
   current_ = id;
   target_node_ = kNoNode;
   step_ = Step::kTree;
@@ -257,11 +265,11 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
 
 uint32_t SrtStarPlanner::draw_candidate() {
   if (candidate_count_ == 0) {
-    // No valid waypoint for this frontier: dropped, the next one is tried.
-    tree_.remove_frontier(frontier_);
+    // No valid waypoint for this frontier from this node: handed up or dropped; the next one
+    // is tried.
     --live_;
     step_ = Step::kPick;
-    return 1;
+    return 1 + hand_up_or_drop(frontier_);
   }
   // SRT's random direction and step, validated (Freda and Oriolo's Valid()): the vehicle
   // is up to d away from the node after a backtrack, so the straight path from where it is
@@ -284,6 +292,38 @@ uint32_t SrtStarPlanner::draw_candidate() {
   const uint32_t keep_out_work = srt_.keep_out_count > 0 ? work::kKeepOutTest : 0;
   if (crosses_keep_out({job_pose_.x, job_pose_.y}, p)) return work::kTableEntry + keep_out_work;
   return work::kTableEntry + keep_out_work + start_path(p, false);
+}
+
+uint32_t SrtStarPlanner::hand_up_or_drop(std::size_t i) {
+  // A vehicle held in a doorway, beside the node it backtracked to, has no straight path along
+  // the corridor that keeps the clearance from the jamb, and the node's safe region has already
+  // removed its parent's frontiers there: dropped, the node's frontiers take the corridor's far
+  // end with them (gt-building, UTM-30LX, seed 15: three rooms never entered, the tree ran out
+  // at 1,116 s). With rescue_frontiers an open sector (a mid frontier) goes to the nearest
+  // ancestor that scanned its direction, where backtracking comes. Not a discontinuity's edge,
+  // which lies against a wall and is often unreachable from anywhere, and not from a node grown
+  // by such a frontier: a node near its ancestor sees the same unreachable space again, and
+  // handing that up once more would grow the tree without end.
+  Frontier& f = tree_.frontier(i);
+  uint32_t used = 1;
+  if (srt_.rescue_frontiers && f.kind == FrontierKind::kMid && !grown_by_handed_up_.test(f.node)) {
+    int level = 0;
+    for (uint16_t n = tree_.nodes()[f.node].parent; n != kNoNode && level < kHandUpLevels;
+         n = tree_.nodes()[n].parent, ++level) {
+      used += work::kRegionAngle + (srt_.keep_out_count > 0 ? work::kKeepOutTest : 0);
+      const int sector = tree_.nodes()[n].sector_of(f.position);
+      if (sector < 0) continue;  // behind that node's field of view
+      // Seen through a keep-out from there: as for a new node's own frontiers, not that node's.
+      if (crosses_keep_out(tree_.nodes()[n].position, f.position)) continue;
+      f.node = n;
+      f.sector = static_cast<uint8_t>(sector);
+      f.handed_up = true;
+      ++frontiers_handed_up_;
+      return used;
+    }
+  }
+  tree_.remove_frontier(i);
+  return used;
 }
 
 bool SrtStarPlanner::crosses_keep_out(Point2 a, Point2 b) const {
@@ -410,7 +450,10 @@ uint32_t SrtStarPlanner::check_path(uint32_t budget, TimeUs now) {
     const float qx = r * bc, qy = r * bs;
     const float u = path_.len2 > 0.0f ? std::clamp((qx * path_.bx + qy * path_.by) / path_.len2, 0.0f, 1.0f) : 0.0f;
     const float dx = qx - u * path_.bx, dy = qy - u * path_.by;
-    if (dx * dx + dy * dy < rho * rho) path_.blocked = true;
+    // With rescue_frontiers, a return nearest the path at its start is one the vehicle flies
+    // away from: already within rho of it (a node beside a wall or a door jamb), it must be
+    // able to leave, or every frontier of that node is lost (teleported corridor test).
+    if ((u > 0.0f || !srt_.rescue_frontiers) && dx * dx + dy * dy < rho * rho) path_.blocked = true;
   }
   if (!path_.blocked && path_.next_beam < scan.beam_count) return used + 1;  // resumes next cycle
   const bool clear = !path_.blocked;
@@ -429,6 +472,7 @@ uint32_t SrtStarPlanner::check_path(uint32_t budget, TimeUs now) {
   } else if (clear) {
     Frontier& f = tree_.frontier(frontier_);
     pursued_ = f.position;
+    pursuing_handed_up_ = f.handed_up;
     if (++f.attempts >= srt_.max_attempts_per_frontier) tree_.remove_frontier(frontier_);
     mode_ = PlannerMode::kForward;
     set_waypoint(path_.target, now);

@@ -65,6 +65,10 @@ struct SrtParams {
   uint8_t max_attempts_per_frontier = 2;  // waypoints drawn for one frontier before it is dropped
   bool prefer_unvisited = false;          // draw first among the frontiers where the vehicle has
                                           // not flown (visited_grid.hpp; not in paper 002)
+  bool rescue_frontiers = false;          // keep frontiers lost beside walls: a path may leave a
+                                          // return it starts within the clearance of, and an open
+                                          // sector's frontier with no path from its node goes to
+                                          // an ancestor (srt_star_planner.hpp; not in paper 002)
   uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
   uint32_t arrival_work_per_cycle = 15000;  // work units (about 100 Verdex instructions each,
                                             // work_units.hpp) of the arrival step per guidance

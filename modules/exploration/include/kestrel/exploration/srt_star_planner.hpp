@@ -22,9 +22,14 @@
 //
 // Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
 // and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
-// past never traps the planner); when the waypoint is not reached within the time limit, or
-// the tree is full when a node must be added, the tree is erased and exploration restarts from
-// the current pose with a new root.
+// past never traps the planner). With srt.rescue_frontiers, frontiers are not lost beside
+// walls: a path is blocked only by the returns it comes within the clearance of, not by those
+// it leaves behind (a vehicle already inside the clearance of a wall can fly away from it), and
+// a mid frontier (an open sector) with no valid waypoint from its node moves to the nearest
+// ancestor that scanned its direction, where backtracking comes, unless its node was itself
+// grown by such a handed-up frontier (which bounds the tree). When the waypoint is not reached
+// within the time limit, or the tree is full when a node must be added, the tree is erased and
+// exploration restarts from the current pose with a new root.
 //
 // The arrival step (sectors and their erosion, the new node and its frontiers, the choice of
 // the next waypoint) costs several million instructions on the Verdex, more than a guidance
@@ -35,6 +40,7 @@
 // does not run. The result, once done, is the one a single call would give (tested); the new
 // waypoint's time is that of the call that finishes it.
 #include <array>
+#include <bitset>
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
@@ -96,6 +102,8 @@ class SrtStarPlanner {
   uint32_t restarts() const { return restarts_; }
   RestartReason last_restart_reason() const { return last_restart_; }
   uint32_t blocked_arrivals() const { return blocked_arrivals_; }  // see GuidanceParams::blocked_*
+  // Frontiers moved to an ancestor because their own node had no path to them.
+  uint32_t frontiers_handed_up() const { return frontiers_handed_up_; }
   TimeUs waypoint_time() const { return waypoint_time_; }
   const VisitedGrid& visited() const { return visited_; }  // where the vehicle has flown
 
@@ -110,6 +118,9 @@ class SrtStarPlanner {
   uint32_t begin_node();
   uint32_t pick_frontier(TimeUs now);
   uint32_t draw_candidate();
+  // Frontier i has no path from its node: it moves to the nearest ancestor that can take it,
+  // or is dropped. Returns the work units spent.
+  uint32_t hand_up_or_drop(std::size_t i);
   uint32_t backtrack_or_finish(TimeUs now);
   // The straight path from the arrival pose to `p` against the returns of the arrival scan.
   uint32_t start_path(Point2 p, bool backtrack);
@@ -132,11 +143,14 @@ class SrtStarPlanner {
   uint16_t target_node_ = kNoNode;
   bool aligning_ = false;  // backtracking: closing in on the node before leaving for its parent
   bool straight_to_parent_ = false;  // the closing in was held off: leave for the parent as is
+  bool pursuing_handed_up_ = false;          // the forward waypoint serves a handed-up frontier
+  std::bitset<kMaxNodes> grown_by_handed_up_;  // nodes reached so: their frontiers stay theirs
   bool guarded_ = false;
   TimeUs waypoint_time_{};
   float closest_m_ = 0;  // nearest the vehicle has come to the waypoint, and when
   TimeUs closest_at_{};
   uint32_t blocked_arrivals_ = 0;
+  uint32_t frontiers_handed_up_ = 0;
   uint32_t waypoints_issued_ = 0;
   uint32_t restarts_ = 0;
   RestartReason last_restart_ = RestartReason::kNone;

@@ -52,6 +52,7 @@ struct Frontier {
   uint8_t sector = 0;       // its sector in that node
   FrontierKind kind = FrontierKind::kMid;
   uint8_t attempts = 0;  // waypoints drawn towards it so far
+  bool handed_up = false;  // its own node had no path to it; now an ancestor's (the planner's)
 };
 
 class SrtStarTree {
