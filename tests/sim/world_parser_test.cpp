@@ -87,6 +87,8 @@ TEST(WorldParser, ErrorsNameTheLineAndTheReason) {
       {"start 0 0 0 0\n", "no walls or obstacles"},
       {"start 0 0 0 0\nroom r 0 0 1 0\nwall 0 0 1 1\n", "t.world:2: room needs a NAME and at least 3 points"},
       {"start 0 0 0 0\nwall 0 0 1 nan\n", "t.world:2: wall: 'nan' is not a number"},
+      {"start 0 0 0 0\nwall 0 0 1 1\nroom a 0 0 1 0 1 1\nroom a 0 0 2 0 2 2\n",
+       "t.world:4: room: the name 'a' is already used"},
       {"start 0 0 0 0\nwall_height 0\nwall 0 0 1 1\n", "t.world:2: wall_height must be positive"},
   };
   for (const BadCase& c : cases) {

@@ -214,6 +214,9 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
       if (n < 0) return fail("room: '" + bad + "' is not a number");
       if (n < 6 || n % 2 != 0 || static_cast<std::size_t>(n) + 2 != toks.size())
         return fail("room needs a NAME and at least 3 points X Y");
+      // Metrics name rooms (metrics.json's room_entry_s): two of one name would be one key.
+      for (const Room& other : w.rooms)
+        if (other.name == toks[1]) return fail("room: the name '" + toks[1] + "' is already used");
       Room room;
       room.name = toks[1];
       for (int k = 0; k < n; k += 2) room.polygon.emplace_back(nums[k], nums[k + 1]);
