@@ -713,6 +713,34 @@ TEST(SrtStarPlanner, RescuedFrontiersReachTheCorridorsEndAndTheTreeStillFinishes
   }
 }
 
+TEST(SrtStarPlanner, AReconfiguredPlannerFliesAsANewOne) {
+  // configure() resets everything a flight leaves behind (the tree, the PRNG, which nodes were
+  // grown by handed-up frontiers): the same seed then gives the same flight as a new planner.
+  SrtParams p = one_shot();
+  p.rescue_frontiers = true;
+  for (uint32_t seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    // Used first on another seed: another tree, other nodes grown by handed-up frontiers.
+    p.seed = seed + 100;
+    auto used = std::make_unique<SrtStarPlanner>();
+    ASSERT_EQ(used->configure(p, {}), Status::kOk);
+    (void)teleport(*used, corridor_with_side_room(), {0.0f, 7.0f, 0.0f}, 400);
+    p.seed = seed;
+    ASSERT_EQ(used->configure(p, {}), Status::kOk);
+    auto fresh = std::make_unique<SrtStarPlanner>();
+    ASSERT_EQ(fresh->configure(p, {}), Status::kOk);
+    const Flight a = teleport(*used, corridor_with_side_room(), {0.0f, 7.0f, 0.0f}, 400);
+    const Flight b = teleport(*fresh, corridor_with_side_room(), {0.0f, 7.0f, 0.0f}, 400);
+    ASSERT_EQ(a.waypoints.size(), b.waypoints.size());
+    for (std::size_t k = 0; k < a.waypoints.size(); ++k) {
+      EXPECT_EQ(a.waypoints[k].x, b.waypoints[k].x) << k;
+      EXPECT_EQ(a.waypoints[k].y, b.waypoints[k].y) << k;
+    }
+    EXPECT_EQ(used->frontiers_handed_up(), fresh->frontiers_handed_up());
+    EXPECT_EQ(used->tree().nodes().size(), fresh->tree().nodes().size());
+  }
+}
+
 // ---- operator keep-out ---------------------------------------------------------------------
 
 // A corridor along x whose north wall has a 3 m glass window at x 2..5 (the laser sees through

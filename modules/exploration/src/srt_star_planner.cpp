@@ -74,6 +74,8 @@ void SrtStarPlanner::reset() {
   target_node_ = kNoNode;
   aligning_ = false;
   straight_to_parent_ = false;
+  pursuing_handed_up_ = false;
+  grown_by_handed_up_.reset();  // node ids start again at 0
   waypoints_issued_ = 0;
   blocked_arrivals_ = 0;
   frontiers_handed_up_ = 0;
