@@ -215,7 +215,9 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
 }
 
 AutonomyMission::AutonomyMission(FlightOptions options)
-    : options_(std::move(options)), exec_clock_(std::make_unique<RealClock>()) {}
+    : options_(std::move(options)), exec_clock_(std::make_unique<RealClock>()) {
+  phase_start_s_.fill(-1.0);
+}
 
 AutonomyMission::~AutonomyMission() = default;
 
@@ -258,7 +260,8 @@ sim::MissionState AutonomyMission::tick(sim::Simulation& sim) {
   }
   const mission::Phase p = stack_->mission().phase();
   if (p != last_phase_) {
-    phase_log_.emplace_back(sim.now().seconds(), mission::to_string(p));
+    double& first = phase_start_s_[static_cast<std::size_t>(p)];
+    if (first < 0) first = sim.now().seconds();
     last_phase_ = p;
   }
   if (p == mission::Phase::kHover) {
@@ -331,13 +334,11 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);
   // When each phase began (its first time): an explore phase that ended well before
   // explore_s ran out of frontiers.
-  for (std::size_t i = 0; i < phase_log_.size(); ++i) {
-    bool first = true;
-    for (std::size_t k = 0; k < i; ++k) first = first && phase_log_[k].second != phase_log_[i].second;
-    if (!first) continue;
+  for (std::size_t i = 0; i < phase_start_s_.size(); ++i) {
+    if (phase_start_s_[i] < 0) continue;
     std::string key = "phase_start_s.";
-    key.append(phase_log_[i].second);
-    out.emplace_back(std::move(key), phase_log_[i].first);
+    key.append(mission::to_string(static_cast<mission::Phase>(i)));
+    out.emplace_back(std::move(key), phase_start_s_[i]);
   }
   if (const exploration::Explorer* e = stack_->explorer(); e != nullptr) {
     out.emplace_back("approach_scaled", e->status().approach_scaled);

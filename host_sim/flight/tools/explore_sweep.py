@@ -3,9 +3,10 @@
 
 Runs `kestrel-sim --mission explore` for every world x laser x explorer x seed (at most
 --jobs at a time, under nice), keeps each run's outputs in OUT/<world>-<laser>-<explorer>-s<seed>,
-and prints two markdown tables: one row per run, then one row per (world, laser, explorer)
-with the aggregates the README reports (runs with every room entered, collisions, median
-t_all_rooms_s, mean coverage and coverage at fixed times from coverage_vs_time).
+and prints three markdown tables: one row per run (with the first contact's place and time);
+one row per (world, laser, explorer) with the aggregates the README reports (runs with every
+room entered, collisions, median t_all_rooms_s, mean coverage and coverage at fixed times from
+coverage_vs_time); and per (world, laser, explorer) how many runs never entered each room.
 
 Standard library only. Runs already present in OUT (metrics.json exists) are not re-run, so
 an interrupted sweep can be resumed and a table re-printed with --seeds and no runs.
@@ -72,6 +73,25 @@ def fmt(v, digits=0, pct=False):
     return f"{v:.{digits}f}"
 
 
+def collisions(m):
+    """The count, and where and when the first contact was: 1 at (5.0, 9.0) 1828 s."""
+    n = m.get("collisions")
+    contacts = m.get("contacts") or []
+    if not n or not contacts:
+        return f"{n}"
+    c = contacts[0]
+    return f"{n} at ({c['x_m']:.1f}, {c['y_m']:.1f}) {c['t_s']:.0f} s"
+
+
+def rooms_missed(ms):
+    """How many runs never entered each room (metrics.json room_entry_s), most missed first."""
+    missed = {}
+    for m in ms:
+        for room, t in (m.get("room_entry_s") or {}).items():
+            missed[room] = missed.get(room, 0) + (t is None)
+    return ", ".join(f"{r} {k}" for r, k in sorted(missed.items(), key=lambda rk: -rk[1]) if k) or "none"
+
+
 def mmss(s):
     if s is None:
         return "-"
@@ -109,7 +129,7 @@ def main():
         end = "finished" if m.get("mission_finished") else m.get("end_reason", "?")
         print(f"| {w} | {l} | {e} | {s} | {end} | {fmt(m.get('coverage'), 1, True)} | "
               f"{fmt(m.get('coverage_t90_s'))} | {m.get('rooms_entered')}/{m.get('rooms_total')} | "
-              f"{mmss(m.get('t_all_rooms_s'))} | {m.get('collisions')} | {fmt(m.get('distance_m'), 1)} |")
+              f"{mmss(m.get('t_all_rooms_s'))} | {collisions(m)} | {fmt(m.get('distance_m'), 1)} |")
 
     print()
     print("| world | laser | explorer | runs | all rooms entered | collision-free | finished | "
@@ -138,6 +158,12 @@ def main():
               f"{mmss(statistics.median(t_all)) if t_all else '-'} | {fmt(cov, 1, True)} | "
               f"{fmt(statistics.median(t90)) if t90 else '-'} | {home}/{n} | "
               f"{fmt(statistics.mean(pos), 2) if pos else '-'} | {fmt(statistics.mean(vel), 3) if vel else '-'} |")
+    print()
+    print("| world | laser | explorer | runs that never entered each room |")
+    print("|---|---|---|---|")
+    for (w, l, e), ms in groups.items():
+        ms = [m for m in ms if m is not None]
+        print(f"| {w} | {l} | {e} | {rooms_missed(ms)} |")
     if args.plot:
         return plot(args, results)
     return 0

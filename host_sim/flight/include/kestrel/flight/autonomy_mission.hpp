@@ -14,6 +14,7 @@
 //   history=on|off   apply scans at the time they were taken (on, default) or on arrival
 //   ekf=FILE         EKF parameter file (estimation::load_ekf_params)
 //   controller=FILE  controller parameter file (control::load_controller_params)
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -89,7 +90,7 @@ class AutonomyMission final : public sim::Mission {
   metrics::EkfErrorAccumulator nav_error_;
   metrics::HorizontalDriftAccumulator drift_;
   mission::Phase last_phase_ = mission::Phase::kIdle;
-  std::vector<std::pair<double, std::string>> phase_log_;
+  std::array<double, mission::kPhaseCount> phase_start_s_{};  // first entry; < 0: never
   ScanTrace trace_;  // --trace-scans (scan_trace.hpp); closed unless asked for
 };
 

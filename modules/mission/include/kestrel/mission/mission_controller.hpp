@@ -10,6 +10,7 @@
 // The controller turns each phase into a GuidanceSetpoint; in the explore phase it passes the
 // explorer's set-point through, pinned to the flight altitude, and records a breadcrumb trail
 // that the return phase flies back along.
+#include <cstddef>
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
@@ -21,6 +22,7 @@ namespace kestrel::mission {
 
 enum class MissionKind : uint8_t { kHover, kWaypoints, kExplore };
 enum class Phase : uint8_t { kIdle, kTakeoff, kHover, kWaypoints, kExplore, kReturn, kLand, kLanded, kFailsafeLand };
+inline constexpr std::size_t kPhaseCount = static_cast<std::size_t>(Phase::kFailsafeLand) + 1;
 const char* to_string(Phase p);
 const char* to_string(MissionKind k);
 
