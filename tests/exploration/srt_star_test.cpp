@@ -261,6 +261,9 @@ TEST(SrtStarPlanner, TreeExhaustedAfterARestartStartsOnceMore) {
   bool fresh = false;
   ASSERT_EQ(planner->update(stuck, enclosed, issued + Duration::from_s(10.1), fresh), Status::kOk);
   EXPECT_EQ(planner->restarts(), 2u);  // the time limit's, then the exhausted tree's
+  EXPECT_EQ(planner->restarts(RestartReason::kTimeout), 1u);
+  EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 1u);
+  EXPECT_EQ(planner->restarts(RestartReason::kTreeFull), 0u);
   EXPECT_EQ(planner->last_restart_reason(), RestartReason::kExhausted);
   EXPECT_TRUE(planner->finished());
   EXPECT_EQ(planner->tree().nodes().size(), 1u);
@@ -378,6 +381,7 @@ TEST(SrtStarPlanner, FullTreeRestartsExploration) {
   }
   EXPECT_EQ(most, kMaxNodes);
   EXPECT_EQ(planner->restarts(), 1u);
+  EXPECT_EQ(planner->restarts(RestartReason::kTreeFull), 1u);
   EXPECT_EQ(planner->last_restart_reason(), RestartReason::kTreeFull);
   EXPECT_EQ(planner->tree().nodes().size(), 1u);
   EXPECT_EQ(planner->mode(), PlannerMode::kForward);

@@ -347,6 +347,14 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
     out.emplace_back("explorer_finished", e->finished() ? 1.0 : 0.0);
     if (e->planner() != nullptr) {
       out.emplace_back("srt_restarts", e->planner()->restarts());
+      // Why: a timeout or a full tree erases what the tree knew; exhausted is the search
+      // starting once more after such a tree ran out.
+      for (const auto why : {exploration::RestartReason::kTimeout, exploration::RestartReason::kTreeFull,
+                             exploration::RestartReason::kExhausted}) {
+        std::string key = "srt_restarts.";
+        key.append(exploration::to_string(why));
+        out.emplace_back(std::move(key), e->planner()->restarts(why));
+      }
       out.emplace_back("srt_blocked_arrivals", e->planner()->blocked_arrivals());
       out.emplace_back("srt_frontiers_handed_up", e->planner()->frontiers_handed_up());
     }

@@ -29,6 +29,20 @@ const char* to_string(PlannerMode m) {
   return "unknown";
 }
 
+const char* to_string(RestartReason r) {
+  switch (r) {
+    case RestartReason::kNone:
+      return "none";
+    case RestartReason::kTimeout:
+      return "timeout";
+    case RestartReason::kTreeFull:
+      return "tree_full";
+    case RestartReason::kExhausted:
+      return "exhausted";
+  }
+  return "unknown";
+}
+
 std::size_t draw_frontier(const SrtStarTree& tree, uint16_t node, std::size_t live, const VisitedGrid* visited,
                           Prng& prng) {
   const IVector<Frontier>& all = tree.frontiers();
@@ -80,6 +94,7 @@ void SrtStarPlanner::reset() {
   blocked_arrivals_ = 0;
   frontiers_handed_up_ = 0;
   restarts_ = 0;
+  restarts_by_.fill(0);
   last_restart_ = RestartReason::kNone;
   step_ = Step::kNone;
   last_work_ = 0;
@@ -154,6 +169,7 @@ void SrtStarPlanner::restart_tree(RestartReason why) {
   current_ = kNoNode;
   target_node_ = kNoNode;
   ++restarts_;
+  ++restarts_by_[static_cast<std::size_t>(why)];
   last_restart_ = why;
 }
 

@@ -66,6 +66,8 @@ const char* to_string(PlannerMode m);
 // kExhausted: a tree grown after a kTimeout or kTreeFull restart ran out of frontiers; it knew
 // only what it had seen since, so exploration starts once more from where the vehicle is.
 enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull, kExhausted };
+inline constexpr std::size_t kRestartReasonCount = 4;
+const char* to_string(RestartReason r);
 
 // Index (into tree.frontiers()) of one of `node`'s `live` frontiers, drawn at random: with a
 // `visited` grid among those that lie where the vehicle has not flown, when there are any;
@@ -101,6 +103,7 @@ class SrtStarPlanner {
   uint32_t waypoints_issued() const { return waypoints_issued_; }
   uint32_t restarts() const { return restarts_; }
   RestartReason last_restart_reason() const { return last_restart_; }
+  uint32_t restarts(RestartReason why) const { return restarts_by_[static_cast<std::size_t>(why)]; }
   uint32_t blocked_arrivals() const { return blocked_arrivals_; }  // see GuidanceParams::blocked_*
   // Frontiers moved to an ancestor because their own node had no path to them.
   uint32_t frontiers_handed_up() const { return frontiers_handed_up_; }
@@ -153,6 +156,7 @@ class SrtStarPlanner {
   uint32_t frontiers_handed_up_ = 0;
   uint32_t waypoints_issued_ = 0;
   uint32_t restarts_ = 0;
+  std::array<uint32_t, kRestartReasonCount> restarts_by_{};  // kNone's entry stays 0
   RestartReason last_restart_ = RestartReason::kNone;
 
   // The arrival step in progress.
