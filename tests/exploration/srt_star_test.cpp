@@ -246,6 +246,91 @@ TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
   EXPECT_EQ(planner->waypoint_time(), issued + Duration::from_s(10.1));
 }
 
+// With keep_tree_on_timeout the waypoint is given up, not the tree: the next choice is the
+// current node's, from where the vehicle is stuck.
+TEST(SrtStarPlanner, WithKeepTreeATimedOutWaypointIsGivenUpNotTheTree) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  GuidanceParams g;
+  g.waypoint_time_limit_s = 10.0f;
+  SrtParams srt = one_shot();
+  srt.keep_tree_on_timeout = true;
+  ASSERT_EQ(planner->configure(srt, g), Status::kOk);
+  const SegmentWorld world = l_corridors();
+  (void)teleport(*planner, world, {0, 0, static_cast<float>(M_PI / 4)}, 3);
+  const std::size_t grown = planner->tree().nodes().size();
+  ASSERT_GE(grown, 2u);
+  ASSERT_EQ(planner->mode(), PlannerMode::kForward);
+  ASSERT_GE(planner->tree().frontier_count_of(planner->current_node()), 1u);
+  const uint16_t node = planner->current_node();
+  const TimeUs issued = planner->waypoint_time();
+  const Point2 wp = planner->waypoint();
+  // Half-way from the node to the waypoint.
+  const Point2 from = planner->tree().nodes()[node].position;
+  const Pose2 stuck{0.5f * (from.x + wp.x), 0.5f * (from.y + wp.y), std::atan2(wp.y - from.y, wp.x - from.x)};
+  const LaserScan scan = world.scan(kUrg, stuck.x, stuck.y, stuck.theta);
+  bool fresh = false;
+  ASSERT_EQ(planner->update(stuck, scan, issued + Duration::from_s(10.1), fresh), Status::kOk);
+  EXPECT_TRUE(fresh);
+  EXPECT_EQ(planner->restarts(), 0u);
+  EXPECT_EQ(planner->waypoints_given_up(), 1u);
+  EXPECT_EQ(planner->tree().nodes().size(), grown);
+  EXPECT_EQ(planner->tree().nodes()[node].parent == kNoNode, node == 0);
+  EXPECT_TRUE(planner->mode() == PlannerMode::kForward || planner->mode() == PlannerMode::kBacktrack);
+  EXPECT_EQ(planner->waypoint_time(), issued + Duration::from_s(10.1));
+  EXPECT_TRUE(planner->waypoint().x != wp.x || planner->waypoint().y != wp.y);
+}
+
+// The first three forward waypoints are never reached (the vehicle waits out the time limit
+// half-way there). Section V erases the tree each time and re-roots it where the vehicle waited;
+// keeping it, the tree explores both corridors from its first root and finishes there, after
+// the one fresh look an exhausted tree that gave up waypoints is allowed.
+TEST(SrtStarPlanner, WithKeepTreeAVehicleStuckOnItsFirstWaypointsFinishesOnItsFirstRoot) {
+  for (const bool keep : {false, true}) {
+    SCOPED_TRACE(keep ? "keep tree" : "erase tree");
+    auto planner = std::make_unique<SrtStarPlanner>();
+    SrtParams srt;
+    srt.keep_tree_on_timeout = keep;
+    GuidanceParams g;
+    g.waypoint_time_limit_s = 10.0f;
+    ASSERT_EQ(planner->configure(srt, g), Status::kOk);
+    const SegmentWorld world = l_corridors();
+    Pose2 pose{0, 0, static_cast<float>(M_PI / 4)};
+    TimeUs t{};
+    int forward = 0;
+    for (int k = 0; k < 200 && !planner->finished(); ++k) {
+      bool fresh = false;
+      const LaserScan scan = world.scan(kUrg, pose.x, pose.y, pose.theta, t);
+      ASSERT_EQ(planner->update(pose, scan, t, fresh), Status::kOk);
+      for (int slice = 0; slice < 1000 && planner->busy(); ++slice) ASSERT_EQ(planner->update(pose, scan, t, fresh), Status::kOk);
+      const bool miss = planner->mode() == PlannerMode::kForward && fresh && ++forward <= 3;
+      const Point2 w = planner->waypoint();
+      if (miss) {  // stuck half-way there until the time limit runs out
+        pose.x = 0.5f * (pose.x + w.x);
+        pose.y = 0.5f * (pose.y + w.y);
+        t += Duration::from_s(10.5);
+        continue;
+      }
+      if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+      pose.x = w.x;
+      pose.y = w.y;
+      t += Duration::from_s(1.0);
+    }
+    EXPECT_TRUE(planner->finished());
+    if (keep) {
+      EXPECT_EQ(planner->restarts(RestartReason::kTimeout), 0u);
+      EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 1u);
+      EXPECT_GE(planner->waypoints_given_up(), 2u);
+      EXPECT_NEAR(planner->waypoint().x, 0.0f, 1e-6);  // the root: where it started
+      EXPECT_NEAR(planner->waypoint().y, 0.0f, 1e-6);
+    } else {
+      EXPECT_GE(planner->restarts(RestartReason::kTimeout), 2u);
+      EXPECT_EQ(planner->waypoints_given_up(), 0u);
+      // Its last tree's root is where the vehicle waited, not where it started.
+      EXPECT_GT(std::hypot(planner->waypoint().x, planner->waypoint().y), 1.0f);
+    }
+  }
+}
+
 // A tree grown after a time-limit restart knows only what it has seen since: when it runs out
 // of frontiers, exploration starts once more from where the vehicle is. A tree that then runs
 // out too has seen all it could from there: finished, with no third tree.

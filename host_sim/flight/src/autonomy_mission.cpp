@@ -77,6 +77,7 @@ bool* explorer_switch(const std::string& key, exploration::Params& p) {
   if (key == "approach") return &p.approach.enabled;
   if (key == "srt_memory") return &p.srt.prefer_unvisited;
   if (key == "srt_rescue") return &p.srt.rescue_frontiers;
+  if (key == "srt_keep_tree") return &p.srt.keep_tree_on_timeout;
   return nullptr;
 }
 
@@ -357,6 +358,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
       }
       out.emplace_back("srt_blocked_arrivals", e->planner()->blocked_arrivals());
       out.emplace_back("srt_frontiers_handed_up", e->planner()->frontiers_handed_up());
+      out.emplace_back("srt_waypoints_given_up", e->planner()->waypoints_given_up());
     }
   }
   const Scheduler& s = stack_->scheduler();
