@@ -78,6 +78,7 @@ bool* explorer_switch(const std::string& key, exploration::Params& p) {
   if (key == "srt_memory") return &p.srt.prefer_unvisited;
   if (key == "srt_rescue") return &p.srt.rescue_frontiers;
   if (key == "srt_keep_tree") return &p.srt.keep_tree_on_timeout;
+  if (key == "srt_steer") return &p.srt.steer_unflown;
   return nullptr;
 }
 

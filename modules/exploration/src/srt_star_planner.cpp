@@ -62,6 +62,31 @@ std::size_t draw_frontier(const SrtStarTree& tree, uint16_t node, std::size_t li
   return tree.frontier_index_of(node, prng.below(static_cast<uint32_t>(live)));
 }
 
+std::size_t draw_toward_unflown(const SrtStarTree& tree, uint16_t node, const UnflownBearings& bearings, Prng& prng) {
+  const IVector<Frontier>& all = tree.frontiers();
+  if (node >= tree.nodes().size()) return all.size();
+  const Point2 from = tree.nodes()[node].position;
+  const auto score = [&](const Frontier& f) {
+    return bearings.score(std::atan2(f.position.y - from.y, f.position.x - from.x));
+  };
+  uint32_t best = 0;
+  for (const Frontier& f : all)
+    if (f.node == node) best = std::max(best, score(f));
+  if (best == 0) return all.size();
+  // Within 4/5 of the best: frontiers a few degrees apart face nearly the same cells, and the
+  // draw among them keeps SRT's randomness.
+  const auto steered = [&](const Frontier& f) { return f.node == node && 5 * score(f) >= 4 * best; };
+  std::size_t n = 0;
+  for (const Frontier& f : all) n += steered(f) ? 1 : 0;
+  std::size_t k = prng.below(static_cast<uint32_t>(n));
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (!steered(all[i])) continue;
+    if (k == 0) return i;
+    --k;
+  }
+  return all.size();
+}
+
 Status SrtStarPlanner::configure(const SrtParams& srt, const GuidanceParams& guidance, bool guarded) {
   Params check;
   check.srt = srt;
@@ -205,6 +230,7 @@ void SrtStarPlanner::start_choose(const Pose2& pose, const LaserScan& scan) {
   job_scan_ = scan;
   job_pose_ = pose;
   step_ = Step::kPick;
+  bearings_counted_ = false;
   live_ = tree_.frontier_count_of(current_);
   last_work_ += 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
 }
@@ -223,6 +249,7 @@ void SrtStarPlanner::work_on_arrival(TimeUs now) {
         if (!tree_.adding()) {
           used += drop_frontiers_seen_through_keep_outs();
           step_ = Step::kPick;
+          bearings_counted_ = false;
           live_ = tree_.frontier_count_of(current_);
           used += 1 + static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
         }
@@ -276,7 +303,13 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   const float min_step = 2.0f * guidance_.arrival_distance_m;
   const uint16_t min_step_mm = static_cast<uint16_t>(std::lround(min_step * 1000.0f));
   constexpr uint16_t kRays = SectorScan::kRaysPerSector;
-  frontier_ = draw_frontier(tree_, current_, live_, srt_.prefer_unvisited ? &visited_ : nullptr, prng_);
+  if (srt_.steer_unflown && !bearings_counted_) {  // a slice of its own; the draw comes next
+    bearings_counted_ = true;
+    return bearings_.count(visited_, node.position);
+  }
+  frontier_ = srt_.steer_unflown ? draw_toward_unflown(tree_, current_, bearings_, prng_) : tree_.frontiers().size();
+  if (frontier_ == tree_.frontiers().size())
+    frontier_ = draw_frontier(tree_, current_, live_, srt_.prefer_unvisited ? &visited_ : nullptr, prng_);
   const Frontier& f = tree_.frontier(frontier_);
   uint16_t n = 0;
   for (int dist = 0; dist <= srt_.ray_search_sectors && n == 0; ++dist) {
@@ -292,9 +325,11 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   }
   candidate_count_ = n;
   step_ = Step::kDraw;
-  // Choosing among the unvisited frontiers is two more passes over the list.
+  // Choosing among the unvisited frontiers is two more passes over the list; steering, two
+  // bearings (atan2) for each of the node's frontiers.
   const uint32_t passes = srt_.prefer_unvisited ? 3 : 1;
-  return 1 + passes * static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
+  const uint32_t steering = srt_.steer_unflown ? 2 * static_cast<uint32_t>(live_) * work::kRegionAngle : 0;
+  return 1 + steering + passes * static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
 }
 
 uint32_t SrtStarPlanner::draw_candidate() {

@@ -1,5 +1,6 @@
 #include "kestrel/exploration/visited_grid.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -8,6 +9,8 @@ namespace kestrel::exploration {
 void VisitedGrid::clear() {
   bits_.fill(0);
   anchored_ = false;
+  min_ix_ = min_iy_ = kSide;
+  max_ix_ = max_iy_ = -1;
 }
 
 bool VisitedGrid::cell_of(Point2 p, int& ix, int& iy) const {
@@ -23,6 +26,10 @@ void VisitedGrid::set(int ix, int iy) {
   if (ix < 0 || iy < 0 || ix >= kSide || iy >= kSide) return;
   const std::size_t i = static_cast<std::size_t>(iy) * kSide + static_cast<std::size_t>(ix);
   bits_[i / 64] |= uint64_t{1} << (i % 64);
+  min_ix_ = std::min(min_ix_, ix);
+  min_iy_ = std::min(min_iy_, iy);
+  max_ix_ = std::max(max_ix_, ix);
+  max_iy_ = std::max(max_iy_, iy);
 }
 
 void VisitedGrid::mark(Point2 p) {
@@ -40,9 +47,17 @@ void VisitedGrid::mark(Point2 p) {
 
 bool VisitedGrid::visited(Point2 p) const {
   int ix = 0, iy = 0;
-  if (!cell_of(p, ix, iy)) return false;
+  return cell_of(p, ix, iy) && visited_cell(ix, iy);
+}
+
+bool VisitedGrid::visited_cell(int ix, int iy) const {
+  if (ix < 0 || iy < 0 || ix >= kSide || iy >= kSide) return false;
   const std::size_t i = static_cast<std::size_t>(iy) * kSide + static_cast<std::size_t>(ix);
   return (bits_[i / 64] >> (i % 64)) & 1u;
+}
+
+bool VisitedGrid::in_extent(int ix, int iy) const {
+  return ix >= min_ix_ && ix <= max_ix_ && iy >= min_iy_ && iy <= max_iy_;
 }
 
 std::size_t VisitedGrid::marked_cells() const {

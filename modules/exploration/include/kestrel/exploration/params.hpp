@@ -69,6 +69,9 @@ struct SrtParams {
                                           // return it starts within the clearance of, and an open
                                           // sector's frontier with no path from its node goes to
                                           // an ancestor (srt_star_planner.hpp; not in paper 002)
+  bool steer_unflown = false;             // draw among the frontiers facing the most of the
+                                          // building not yet flown (unflown_bearings.hpp; not in
+                                          // paper 002)
   bool keep_tree_on_timeout = false;      // a forward waypoint not reached within the time limit
                                           // is given up and the next one chosen from the same
                                           // tree, instead of section V's erasing it

@@ -51,6 +51,7 @@
 #include "kestrel/exploration/prng.hpp"
 #include "kestrel/exploration/sector_scan.hpp"
 #include "kestrel/exploration/srt_star_tree.hpp"
+#include "kestrel/exploration/unflown_bearings.hpp"
 #include "kestrel/exploration/visited_grid.hpp"
 
 namespace kestrel::exploration {
@@ -75,6 +76,11 @@ const char* to_string(RestartReason r);
 // else (or without a grid) among all of them. tree.frontiers().size() when `live` is 0.
 std::size_t draw_frontier(const SrtStarTree& tree, uint16_t node, std::size_t live, const VisitedGrid* visited,
                           Prng& prng);
+
+// Index of one of `node`'s frontiers drawn at random among those whose bearing from the node
+// faces at least 4/5 of the most unflown cells any of them faces (`bearings`, counted from the
+// node); tree.frontiers().size() when none faces any.
+std::size_t draw_toward_unflown(const SrtStarTree& tree, uint16_t node, const UnflownBearings& bearings, Prng& prng);
 
 class SrtStarPlanner {
  public:
@@ -142,6 +148,8 @@ class SrtStarPlanner {
   SrtStarTree tree_;
   SectorScan sectors_;
   VisitedGrid visited_;  // cleared by reset(), not by section V's restarts
+  UnflownBearings bearings_;     // steer_unflown: counted once per choice, from its node
+  bool bearings_counted_ = false;
   Prng prng_{1};
   PlannerMode mode_ = PlannerMode::kIdle;
   Point2 waypoint_{};

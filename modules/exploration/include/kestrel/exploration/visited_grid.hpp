@@ -30,13 +30,18 @@ class VisitedGrid {
   bool visited(Point2 p) const;
   std::size_t marked_cells() const;
 
- private:
   // Cell of p, or false outside the grid (or before the first mark).
   bool cell_of(Point2 p, int& ix, int& iy) const;
+  bool visited_cell(int ix, int iy) const;  // false outside the grid
+  // Inside the bounding box of the marked cells (false before the first mark).
+  bool in_extent(int ix, int iy) const;
+
+ private:
   void set(int ix, int iy);
 
   std::array<uint64_t, kSide * kSide / 64> bits_{};
   Point2 origin_{};  // world position of cell (0, 0)'s corner
+  int min_ix_ = kSide, min_iy_ = kSide, max_ix_ = -1, max_iy_ = -1;  // of the marked cells
   bool anchored_ = false;
 };
 

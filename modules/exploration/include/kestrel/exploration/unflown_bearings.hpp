@@ -1,0 +1,45 @@
+#pragma once
+// How much of the building the vehicle has not flown lies in each direction from a point, on
+// VisitedGrid's 1 m cells: the global half of srt.steer_unflown (srt_star_planner.hpp).
+//
+// After section V's restarts a fresh SRT-Star tree knows only what it sees from where the
+// vehicle is, and its random frontier choice, repeated node by node, keeps the vehicle near
+// there: in gt-building's 30-minute UTM-30LX flights the trees that lost the west rooms lived in
+// the east half (README, Exploration). A frontier's own cell says little (VisitedGrid's
+// prefer_unvisited: a frontier 3.5 m away is unflown in nearly every direction); the cells
+// beyond it do. Counted here: the unflown cells within kReachCells of the node, inside the
+// extent of what has been flown (the building's outline, as far as the vehicle knows it: cells
+// outside it are more often outside the walls than rooms), by bearing, in kBins bins.
+//
+// No trigonometry per cell: each cell offset's bin is tabled once, at construction. 1.2 KB.
+#include <array>
+#include <cstdint>
+
+#include "kestrel/core/se2.hpp"
+#include "kestrel/exploration/visited_grid.hpp"
+
+namespace kestrel::exploration {
+
+class UnflownBearings {
+ public:
+  static constexpr int kBins = 36;          // 10 degrees each
+  static constexpr int kReachCells = 16;    // 16 m: across gt-building from either end's rooms
+  static constexpr int kHalfConeBins = 3;   // a frontier's score: its bin and 3 either side
+  static constexpr uint8_t kBeyondReach = 0xFF;
+
+  UnflownBearings();
+
+  // Counts the unflown cells around `from` by bearing. Returns the work units it cost.
+  uint32_t count(const VisitedGrid& grid, Point2 from);
+  // Unflown cells within +-kHalfConeBins bins of `bearing_rad` (world frame) at the last
+  // count; 0 for a non-finite bearing.
+  uint32_t score(float bearing_rad) const;
+  uint32_t total() const;  // every unflown cell counted
+
+ private:
+  static constexpr int kSide = 2 * kReachCells + 1;
+  std::array<uint8_t, kSide * kSide> bin_of_offset_{};  // kBeyondReach outside the disc
+  std::array<uint16_t, kBins> cells_{};
+};
+
+}  // namespace kestrel::exploration

@@ -1,0 +1,168 @@
+// Where the building has not been flown, by bearing (unflown_bearings.hpp), and the frontier
+// draw that steers a fresh tree towards it (draw_toward_unflown, SrtParams::steer_unflown).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "kestrel/exploration/srt_star_planner.hpp"
+#include "kestrel/exploration/unflown_bearings.hpp"
+#include "kestrel/exploration/visited_grid.hpp"
+#include "synthetic_world.hpp"
+
+namespace kestrel::exploration {
+namespace {
+
+using test::LaserModel;
+using test::SegmentWorld;
+
+constexpr float kWest = static_cast<float>(M_PI), kEast = 0.0f, kNorth = static_cast<float>(M_PI / 2);
+
+// A corridor flown from x = 0 to 12 along y = 0, and the outline's corners touched at (0, +-7):
+// the rooms either side of the corridor's west half are inside the extent and never flown.
+VisitedGrid corridor_flown_west_rooms_not() {
+  VisitedGrid g;
+  for (float x = 0.0f; x <= 12.0f; x += 0.5f) g.mark({x, 0});
+  g.mark({0, 7});
+  g.mark({0, -7});
+  return g;
+}
+
+TEST(VisitedGrid, ExtentIsTheBoundingBoxOfTheMarkedCells) {
+  VisitedGrid g;
+  int ix = 0, iy = 0;
+  EXPECT_FALSE(g.cell_of({0, 0}, ix, iy));  // no grid before the first mark
+  g.mark({0.5f, 0.5f});
+  ASSERT_TRUE(g.cell_of({0.5f, 0.5f}, ix, iy));
+  EXPECT_TRUE(g.in_extent(ix - 1, iy + 1));
+  EXPECT_FALSE(g.in_extent(ix - 2, iy));
+  g.mark({5.5f, 0.5f});
+  EXPECT_TRUE(g.in_extent(ix + 6, iy));
+  EXPECT_FALSE(g.in_extent(ix + 7, iy));
+  EXPECT_TRUE(g.in_extent(ix + 3, iy - 1));  // inside the box, never marked
+  EXPECT_FALSE(g.visited_cell(ix + 3, iy - 1));
+  EXPECT_TRUE(g.visited_cell(ix + 4, iy - 1));  // a neighbour of the second mark
+  EXPECT_FALSE(g.visited_cell(-1, 0));
+  EXPECT_FALSE(g.visited_cell(VisitedGrid::kSide, 0));
+  g.clear();
+  EXPECT_FALSE(g.in_extent(ix, iy));
+}
+
+TEST(UnflownBearings, CountsTheUnflownCellsInsideTheExtentByBearing) {
+  const VisitedGrid g = corridor_flown_west_rooms_not();
+  UnflownBearings b;
+  EXPECT_GT(b.count(g, {12.0f, 0}), 0u);
+  // From the corridor's east end: the unflown rooms lie west; east of x = 13 is outside the
+  // extent (never flown, so as likely outside the walls as a room).
+  EXPECT_GT(b.score(kWest), 40u);
+  EXPECT_EQ(b.score(kEast), 0u);
+  EXPECT_GT(b.score(kWest), b.score(kNorth));
+  // The same bearing, a turn apart, is the same bin.
+  EXPECT_EQ(b.score(kWest), b.score(kWest + 2.0f * static_cast<float>(M_PI)));
+  EXPECT_EQ(b.score(kWest), b.score(kWest - 2.0f * static_cast<float>(M_PI)));
+  // Nothing counted twice: the cones of the 36 bins, 7 bins each, count every cell 7 times.
+  uint32_t sum = 0;
+  for (int k = 0; k < UnflownBearings::kBins; ++k) sum += b.score((k + 0.5f) * 2.0f * static_cast<float>(M_PI) / UnflownBearings::kBins);
+  EXPECT_EQ(sum, b.total() * (2 * UnflownBearings::kHalfConeBins + 1));
+}
+
+TEST(UnflownBearings, NothingCountedOffTheGridOrFromANonFinitePoint) {
+  UnflownBearings b;
+  const VisitedGrid empty;
+  b.count(empty, {0, 0});
+  EXPECT_EQ(b.total(), 0u);
+  const VisitedGrid g = corridor_flown_west_rooms_not();
+  b.count(g, {1000.0f, 0});
+  EXPECT_EQ(b.total(), 0u);
+  b.count(g, {std::nanf(""), 0});
+  EXPECT_EQ(b.total(), 0u);
+  b.count(g, {12.0f, 0});
+  EXPECT_GT(b.total(), 0u);
+  EXPECT_EQ(b.score(std::nanf("")), 0u);
+  EXPECT_EQ(b.score(INFINITY), 0u);
+}
+
+// A fresh tree at the east end of the flown corridor (as after section V's restart): its
+// frontiers face both ways along it; steered, every draw goes west, where the unflown rooms
+// are; unsteered, both ends come up.
+TEST(DrawTowardUnflown, AFreshTreeAtTheCorridorsEastEndHeadsBackWest) {
+  SegmentWorld corridor;
+  corridor.add(-20, 1, 40, 1);
+  corridor.add(-20, -1, 40, -1);
+  auto sectors = std::make_unique<SectorScan>();
+  auto tree = std::make_unique<SrtStarTree>();
+  const SrtParams params;
+  const Pose2 node{12.0f, 0, kNorth};  // facing a wall: both ends at +-90 degrees
+  ASSERT_EQ(sectors->build(corridor.scan(LaserModel::urg04lx(), node.x, node.y, node.theta), params), Status::kOk);
+  uint16_t id = kNoNode;
+  ASSERT_EQ(tree->add_node(node, *sectors, kNoNode, id), Status::kOk);
+  const std::size_t live = tree->frontier_count_of(id);
+  UnflownBearings b;
+  b.count(corridor_flown_west_rooms_not(), {node.x, node.y});
+  int west = 0, east_unsteered = 0;
+  for (uint32_t seed = 1; seed <= 40; ++seed) {
+    Prng prng(seed);
+    const std::size_t i = draw_toward_unflown(*tree, id, b, prng);
+    ASSERT_LT(i, tree->frontiers().size());
+    EXPECT_EQ(tree->frontier(i).node, id);
+    west += tree->frontier(i).position.x < node.x ? 1 : 0;
+    Prng plain(seed);
+    east_unsteered += tree->frontier(draw_frontier(*tree, id, live, nullptr, plain)).position.x > node.x ? 1 : 0;
+  }
+  EXPECT_EQ(west, 40);
+  EXPECT_GT(east_unsteered, 0);
+  EXPECT_LT(east_unsteered, 40);
+  // Nothing unflown in any frontier's direction: no steered draw (the caller draws as before).
+  UnflownBearings none;
+  Prng prng(7);
+  EXPECT_EQ(draw_toward_unflown(*tree, id, none, prng), tree->frontiers().size());
+  EXPECT_EQ(draw_toward_unflown(*tree, kNoNode, b, prng), tree->frontiers().size());
+}
+
+// The planner with the option: the vehicle flies the corridor west to east without reaching
+// its waypoint, the time limit erases the tree at the east end, and the fresh tree's first
+// waypoint is west of it, on every seed.
+TEST(SrtStarPlanner, SteeredAFreshTreeHeadsForTheUnflownSideOfTheBuilding) {
+  SegmentWorld corridor;
+  corridor.add(-20, 1, 40, 1);
+  corridor.add(-20, -1, 40, -1);
+  const LaserModel urg = LaserModel::urg04lx();
+  for (const bool steer : {true, false}) {
+    int west = 0;
+    for (uint32_t seed = 1; seed <= 20; ++seed) {
+      auto planner = std::make_unique<SrtStarPlanner>();
+      SrtParams srt;
+      srt.arrival_work_per_cycle = 0;
+      srt.steer_unflown = steer;
+      srt.seed = seed;
+      GuidanceParams g;
+      g.waypoint_time_limit_s = 30.0f;
+      ASSERT_EQ(planner->configure(srt, g), Status::kOk);
+      bool fresh = false;
+      // Started facing the wall: the first waypoint is along the corridor either way.
+      ASSERT_EQ(planner->update({0, 0, kNorth}, corridor.scan(urg, 0, 0, kNorth), TimeUs{}, fresh), Status::kOk);
+      // The outline touched, then the corridor flown at 1 m from its centre line (the waypoint
+      // never reached), all within the time limit.
+      const Pose2 corners[] = {{0, 7, 0}, {0, -7, 0}};
+      for (const Pose2& p : corners) ASSERT_EQ(planner->update(p, corridor.scan(urg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
+      for (float x = 0.0f; x <= 12.0f; x += 0.5f)
+        ASSERT_EQ(planner->update({x, 0.8f, 0}, corridor.scan(urg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
+      ASSERT_EQ(planner->restarts(), 0u);
+      const Pose2 east_end{12.0f, 0, kNorth};
+      ASSERT_EQ(planner->update(east_end, corridor.scan(urg, east_end.x, east_end.y, east_end.theta), TimeUs{31000000}, fresh),
+                Status::kOk);
+      ASSERT_EQ(planner->restarts(), 1u);
+      ASSERT_EQ(planner->mode(), PlannerMode::kForward);
+      west += planner->waypoint().x < east_end.x ? 1 : 0;
+    }
+    if (steer) {
+      EXPECT_EQ(west, 20);
+    } else {
+      EXPECT_GT(west, 0);
+      EXPECT_LT(west, 20);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace kestrel::exploration
