@@ -107,13 +107,6 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_TRUE(rescue.stack.explorer.srt.rescue_frontiers);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "maybe"}}}, rescue),
             "srt_rescue: expected on or off, got 'maybe'");
-  // Section V's time limit gives up the waypoint, not the tree.
-  FlightOptions keep;
-  EXPECT_FALSE(keep.stack.explorer.srt.keep_tree_on_timeout);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_keep_tree", "on"}}}, keep), "");
-  EXPECT_TRUE(keep.stack.explorer.srt.keep_tree_on_timeout);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_keep_tree", "off"}}}, keep), "");
-  EXPECT_FALSE(keep.stack.explorer.srt.keep_tree_on_timeout);
   // Explore's only.
   FlightOptions h;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, margins, h), "");

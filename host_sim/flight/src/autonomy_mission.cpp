@@ -77,7 +77,6 @@ bool* explorer_switch(const std::string& key, exploration::Params& p) {
   if (key == "approach") return &p.approach.enabled;
   if (key == "srt_memory") return &p.srt.prefer_unvisited;
   if (key == "srt_rescue") return &p.srt.rescue_frontiers;
-  if (key == "srt_keep_tree") return &p.srt.keep_tree_on_timeout;
   if (key == "srt_steer") return &p.srt.steer_unflown;
   return nullptr;
 }
@@ -359,7 +358,6 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
       }
       out.emplace_back("srt_blocked_arrivals", e->planner()->blocked_arrivals());
       out.emplace_back("srt_frontiers_handed_up", e->planner()->frontiers_handed_up());
-      out.emplace_back("srt_waypoints_given_up", e->planner()->waypoints_given_up());
     }
   }
   const Scheduler& s = stack_->scheduler();

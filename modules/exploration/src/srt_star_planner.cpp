@@ -114,12 +114,10 @@ void SrtStarPlanner::reset() {
   aligning_ = false;
   straight_to_parent_ = false;
   pursuing_handed_up_ = false;
-  gave_up_in_tree_ = false;
   grown_by_handed_up_.reset();  // node ids start again at 0
   waypoints_issued_ = 0;
   blocked_arrivals_ = 0;
   frontiers_handed_up_ = 0;
-  waypoints_given_up_ = 0;
   restarts_ = 0;
   restarts_by_.fill(0);
   last_restart_ = RestartReason::kNone;
@@ -176,22 +174,9 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
         visited_.mark(waypoint_);
         visited_.mark(pursued_);
       }
-      if (mode_ == PlannerMode::kForward && srt_.keep_tree_on_timeout) {
-        // Every restart of a 30-minute gt-building flight is this time limit, and the tree it
-        // erases is the only record of the rooms behind the vehicle: the next trees live where
-        // the vehicle was stuck. Given up instead, the waypoint's frontier has used one of its
-        // attempts, and the next choice is the current node's from where the vehicle is (its
-        // paths checked from there, as after a backtrack), so the tree's backtracking still
-        // reaches every frontier it holds. Only a backtrack the time limit stops erases it.
-        ++waypoints_given_up_;
-        gave_up_in_tree_ = true;
-        pursuing_handed_up_ = false;
-        start_choose(pose, scan);
-      } else {
-        restart_tree(RestartReason::kTimeout);
-        // The scan was accepted as the arrival's a moment ago, so it divides into sectors.
-        if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
-      }
+      restart_tree(RestartReason::kTimeout);
+      // The scan was accepted as the arrival's a moment ago, so it divides into sectors.
+      if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
     }
   }
   if (step_ != Step::kNone) work_on_arrival(now);
@@ -204,7 +189,6 @@ void SrtStarPlanner::restart_tree(RestartReason why) {
   aligning_ = false;
   straight_to_parent_ = false;
   pursuing_handed_up_ = false;
-  gave_up_in_tree_ = false;
   grown_by_handed_up_.reset();
   mode_ = PlannerMode::kIdle;
   current_ = kNoNode;
@@ -454,9 +438,8 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
   // and running out of frontiers says nothing of the rest of the building (gt-building, 30
   // minutes, UTM-30LX: two of ten flights flew home from the north-east room with four rooms
   // never entered). It starts once more from here; a tree that then runs out has seen all it
-  // could from where the vehicle was, and exploration is finished. So is a tree that gave up a
-  // waypoint (keep_tree_on_timeout): what lay behind it was never seen.
-  if (last_restart_ == RestartReason::kTimeout || last_restart_ == RestartReason::kTreeFull || gave_up_in_tree_) {
+  // could from where the vehicle was, and exploration is finished.
+  if (last_restart_ == RestartReason::kTimeout || last_restart_ == RestartReason::kTreeFull) {
     restart_tree(RestartReason::kExhausted);
     if (start_grow(job_pose_, job_scan_) == Status::kOk) return work::kTableEntry;
   }

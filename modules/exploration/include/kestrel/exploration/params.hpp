@@ -72,10 +72,6 @@ struct SrtParams {
   bool steer_unflown = false;             // draw among the frontiers facing the most of the
                                           // building not yet flown (unflown_bearings.hpp; not in
                                           // paper 002)
-  bool keep_tree_on_timeout = false;      // a forward waypoint not reached within the time limit
-                                          // is given up and the next one chosen from the same
-                                          // tree, instead of section V's erasing it
-                                          // (srt_star_planner.hpp; not in paper 002)
   uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
   uint32_t arrival_work_per_cycle = 15000;  // work units (about 100 Verdex instructions each,
                                             // work_units.hpp) of the arrival step per guidance

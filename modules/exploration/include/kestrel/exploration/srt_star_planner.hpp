@@ -64,8 +64,7 @@ enum class PlannerMode : uint8_t {
 };
 const char* to_string(PlannerMode m);
 
-// kExhausted: a tree grown after a kTimeout or kTreeFull restart (or one that gave up a waypoint,
-// keep_tree_on_timeout) ran out of frontiers; it knew
+// kExhausted: a tree grown after a kTimeout or kTreeFull restart ran out of frontiers; it knew
 // only what it had seen since, so exploration starts once more from where the vehicle is.
 enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull, kExhausted };
 inline constexpr std::size_t kRestartReasonCount = 4;
@@ -114,8 +113,6 @@ class SrtStarPlanner {
   uint32_t blocked_arrivals() const { return blocked_arrivals_; }  // see GuidanceParams::blocked_*
   // Frontiers moved to an ancestor because their own node had no path to them.
   uint32_t frontiers_handed_up() const { return frontiers_handed_up_; }
-  // Forward waypoints the time limit gave up without erasing the tree (keep_tree_on_timeout).
-  uint32_t waypoints_given_up() const { return waypoints_given_up_; }
   TimeUs waypoint_time() const { return waypoint_time_; }
   const VisitedGrid& visited() const { return visited_; }  // where the vehicle has flown
 
@@ -158,7 +155,6 @@ class SrtStarPlanner {
   bool aligning_ = false;  // backtracking: closing in on the node before leaving for its parent
   bool straight_to_parent_ = false;  // the closing in was held off: leave for the parent as is
   bool pursuing_handed_up_ = false;          // the forward waypoint serves a handed-up frontier
-  bool gave_up_in_tree_ = false;             // this tree gave up a waypoint (keep_tree_on_timeout)
   std::bitset<kMaxNodes> grown_by_handed_up_;  // nodes reached so: their frontiers stay theirs
   bool guarded_ = false;
   TimeUs waypoint_time_{};
@@ -166,7 +162,6 @@ class SrtStarPlanner {
   TimeUs closest_at_{};
   uint32_t blocked_arrivals_ = 0;
   uint32_t frontiers_handed_up_ = 0;
-  uint32_t waypoints_given_up_ = 0;
   uint32_t waypoints_issued_ = 0;
   uint32_t restarts_ = 0;
   std::array<uint32_t, kRestartReasonCount> restarts_by_{};  // kNone's entry stays 0
