@@ -358,6 +358,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
       }
       out.emplace_back("srt_blocked_arrivals", e->planner()->blocked_arrivals());
       out.emplace_back("srt_frontiers_handed_up", e->planner()->frontiers_handed_up());
+      out.emplace_back("srt_steer_pauses", e->planner()->steer_pauses());
     }
   }
   const Scheduler& s = stack_->scheduler();

@@ -115,6 +115,8 @@ void SrtStarPlanner::reset() {
   straight_to_parent_ = false;
   pursuing_handed_up_ = false;
   grown_by_handed_up_.reset();  // node ids start again at 0
+  drawn_steered_ = pursued_steered_ = steer_paused_ = false;
+  steer_pauses_ = 0;
   waypoints_issued_ = 0;
   blocked_arrivals_ = 0;
   frontiers_handed_up_ = 0;
@@ -167,12 +169,22 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
       target_node_ = kNoNode;
       start_choose(pose, scan);
     } else if (arrived) {
+      steer_paused_ = false;
       if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
     } else if (late) {
       if (mode_ == PlannerMode::kForward) {
         // Not reached in time: counted as visited, or the next tree would draw it first again.
         visited_.mark(waypoint_);
         visited_.mark(pursued_);
+        // A steered waypoint not reached (gt-building: the 1 m strip between the inner room and
+        // the outer wall, which r_safe on both walls keeps the vehicle out of, faces the whole
+        // unflown west): the fresh tree would be steered straight back to it, restart after
+        // restart. The next choices are drawn as paper 002 draws them until a waypoint is
+        // reached.
+        if (pursued_steered_ && !steer_paused_) {
+          steer_paused_ = true;
+          ++steer_pauses_;
+        }
       }
       restart_tree(RestartReason::kTimeout);
       // The scan was accepted as the arrival's a moment ago, so it divides into sectors.
@@ -287,12 +299,14 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   const float min_step = 2.0f * guidance_.arrival_distance_m;
   const uint16_t min_step_mm = static_cast<uint16_t>(std::lround(min_step * 1000.0f));
   constexpr uint16_t kRays = SectorScan::kRaysPerSector;
-  if (srt_.steer_unflown && !bearings_counted_) {  // a slice of its own; the draw comes next
+  const bool steer = srt_.steer_unflown && !steer_paused_;
+  if (steer && !bearings_counted_) {  // a slice of its own; the draw comes next
     bearings_counted_ = true;
     return bearings_.count(visited_, node.position);
   }
-  frontier_ = srt_.steer_unflown ? draw_toward_unflown(tree_, current_, bearings_, prng_) : tree_.frontiers().size();
-  if (frontier_ == tree_.frontiers().size())
+  frontier_ = steer ? draw_toward_unflown(tree_, current_, bearings_, prng_) : tree_.frontiers().size();
+  drawn_steered_ = frontier_ < tree_.frontiers().size();
+  if (!drawn_steered_)
     frontier_ = draw_frontier(tree_, current_, live_, srt_.prefer_unvisited ? &visited_ : nullptr, prng_);
   const Frontier& f = tree_.frontier(frontier_);
   uint16_t n = 0;
@@ -312,7 +326,7 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   // Choosing among the unvisited frontiers is two more passes over the list; steering, two
   // bearings (atan2) for each of the node's frontiers.
   const uint32_t passes = srt_.prefer_unvisited ? 3 : 1;
-  const uint32_t steering = srt_.steer_unflown ? 2 * static_cast<uint32_t>(live_) * work::kRegionAngle : 0;
+  const uint32_t steering = steer ? 2 * static_cast<uint32_t>(live_) * work::kRegionAngle : 0;
   return 1 + steering + passes * static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
 }
 
@@ -525,6 +539,7 @@ uint32_t SrtStarPlanner::check_path(uint32_t budget, TimeUs now) {
   } else if (clear) {
     Frontier& f = tree_.frontier(frontier_);
     pursued_ = f.position;
+    pursued_steered_ = drawn_steered_;
     pursuing_handed_up_ = f.handed_up;
     if (++f.attempts >= srt_.max_attempts_per_frontier) tree_.remove_frontier(frontier_);
     mode_ = PlannerMode::kForward;

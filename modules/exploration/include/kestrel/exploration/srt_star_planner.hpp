@@ -113,6 +113,9 @@ class SrtStarPlanner {
   uint32_t blocked_arrivals() const { return blocked_arrivals_; }  // see GuidanceParams::blocked_*
   // Frontiers moved to an ancestor because their own node had no path to them.
   uint32_t frontiers_handed_up() const { return frontiers_handed_up_; }
+  // Times steer_unflown was paused because a steered waypoint was not reached in time.
+  uint32_t steer_pauses() const { return steer_pauses_; }
+  bool steer_paused() const { return steer_paused_; }
   TimeUs waypoint_time() const { return waypoint_time_; }
   const VisitedGrid& visited() const { return visited_; }  // where the vehicle has flown
 
@@ -147,6 +150,10 @@ class SrtStarPlanner {
   VisitedGrid visited_;  // cleared by reset(), not by section V's restarts
   UnflownBearings bearings_;     // steer_unflown: counted once per choice, from its node
   bool bearings_counted_ = false;
+  bool drawn_steered_ = false;    // the frontier being tried was drawn by steering
+  bool pursued_steered_ = false;  // ... and the one the forward waypoint serves
+  bool steer_paused_ = false;     // a steered waypoint timed out: unsteered until one is reached
+  uint32_t steer_pauses_ = 0;
   Prng prng_{1};
   PlannerMode mode_ = PlannerMode::kIdle;
   Point2 waypoint_{};
