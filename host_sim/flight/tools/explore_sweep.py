@@ -24,6 +24,7 @@ Example:
 import argparse
 import json
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -31,13 +32,19 @@ from concurrent.futures import ThreadPoolExecutor
 
 
 def parse_seeds(text):
+    """1-3,7 -> [1, 2, 3, 7]; ValueError, with the culprit, for anything that names no seed."""
     seeds = []
     for part in text.split(","):
-        if "-" in part:
-            a, b = part.split("-", 1)
-            seeds.extend(range(int(a), int(b) + 1))
-        elif part:
-            seeds.append(int(part))
+        if not part:
+            continue
+        a, dash, b = part.partition("-")
+        if not a.isdecimal() or (dash and not b.isdecimal()):
+            raise ValueError(f"'{part}' is not a seed or a range of seeds like 1-10")
+        if dash and int(b) < int(a):
+            raise ValueError(f"'{part}' ends before it starts")
+        seeds.extend(range(int(a), int(b if dash else a) + 1))
+    if not seeds:
+        raise ValueError(f"'{text}' names no seed")
     return seeds
 
 
@@ -115,8 +122,16 @@ def main():
     ap.add_argument("--plot", help="coverage-versus-time picture (PNG) of the sweep")
     ap.add_argument("--plot-tool", help="kestrel-coverage-plot (default: beside --sim)")
     args = ap.parse_args()
-    seeds = parse_seeds(args.seeds)
+    try:
+        seeds = parse_seeds(args.seeds)
+    except ValueError as e:
+        ap.error(f"--seeds: {e}")
     combos = [(w, l, e, s) for w in args.worlds for l in args.lasers for e in args.explorers for s in seeds]
+    # Without this a missing simulator only shows as "no metrics" rows (nice fails in each run's
+    # stderr.txt) and exit status 0. A sweep with every run already done needs no simulator.
+    todo = [c for c in combos if not os.path.exists(os.path.join(run_dir(args.out, *c), "metrics.json"))]
+    if todo and shutil.which(args.sim) is None:
+        ap.error(f"--sim: '{args.sim}' is not an executable (build kestrel-sim, or pass its path)")
     with ThreadPoolExecutor(max_workers=max(1, min(args.jobs, 2))) as pool:
         results = list(pool.map(lambda c: (c, run_one(args, *c)), combos))
 
