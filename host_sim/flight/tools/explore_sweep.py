@@ -64,7 +64,11 @@ def run_one(args, world, laser, explorer, seed):
         if args.config:
             cmd += ["--config", args.config]
         with open(os.path.join(d, "stderr.txt"), "w") as err:
-            subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=err, timeout=args.timeout, check=False)
+            try:
+                subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=err, timeout=args.timeout, check=False)
+            except subprocess.TimeoutExpired:
+                err.write(f"explore_sweep.py: stopped after --timeout {args.timeout} s\n")
+                return None
     try:
         with open(metrics) as f:
             return json.load(f)
@@ -102,7 +106,8 @@ def rooms_missed(ms):
 def mmss(s):
     if s is None:
         return "-"
-    return f"{int(s) // 60}:{int(round(s)) % 60:02d}"
+    whole = int(round(s))  # minutes and seconds of the same rounding: 59.6 s is 1:00
+    return f"{whole // 60}:{whole % 60:02d}"
 
 
 def main():
@@ -179,9 +184,11 @@ def main():
     for (w, l, e), ms in groups.items():
         ms = [m for m in ms if m is not None]
         print(f"| {w} | {l} | {e} | {rooms_missed(ms)} |")
-    if args.plot:
-        return plot(args, results)
-    return 0
+    missing = sum(1 for _, m in results if m is None)
+    if missing:
+        print(f"{missing} run(s) left no metrics.json: see stderr.txt in their directories", file=sys.stderr)
+    status = plot(args, results) if args.plot else 0
+    return 1 if missing else status
 
 
 def plot_command(args, results):
