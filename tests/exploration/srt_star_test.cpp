@@ -239,6 +239,7 @@ TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
   ASSERT_EQ(planner->update(stuck, scan, issued + Duration::from_s(10.1), fresh), Status::kOk);
   EXPECT_TRUE(fresh);
   EXPECT_EQ(planner->restarts(), 1u);
+  EXPECT_EQ(planner->restarts(RestartReason::kTimeout), 1u);
   EXPECT_EQ(planner->last_restart_reason(), RestartReason::kTimeout);
   ASSERT_EQ(planner->tree().nodes().size(), 1u);  // a new root where the vehicle is
   EXPECT_FLOAT_EQ(planner->tree().nodes()[0].position.x, stuck.x);
@@ -552,7 +553,11 @@ TEST(SrtStarPlannerSliced, GivesTheOneShotResultWhateverTheBudget) {
     for (const SegmentWorld& world : {l_corridors(), two_rooms()}) {
       SrtParams whole = one_shot();
       whole.seed = seed;
-      whole.steer_unflown = seed == 3;  // its count is a slice of its own
+      // The options that read the flown grid or move frontiers: their results must not depend
+      // on the poses given while a step is sliced either.
+      whole.steer_unflown = seed >= 2;
+      whole.prefer_unvisited = seed == 3;
+      whole.rescue_frontiers = seed == 3;
       auto reference = std::make_unique<SrtStarPlanner>();
       ASSERT_EQ(reference->configure(whole, {}), Status::kOk);
       const Trace a = fly(*reference, world, {0, 0, static_cast<float>(M_PI / 4)}, 60);
@@ -575,6 +580,10 @@ TEST(SrtStarPlannerSliced, GivesTheOneShotResultWhateverTheBudget) {
         }
         EXPECT_EQ(reference->finished(), planner->finished());
         EXPECT_EQ(reference->waypoints_issued(), planner->waypoints_issued());
+        EXPECT_EQ(reference->steered_draws(), planner->steered_draws());
+        if (whole.steer_unflown) {
+          EXPECT_GT(planner->steered_draws(), 0u);
+        }
         expect_same_tree(reference->tree(), planner->tree());
       }
     }

@@ -57,13 +57,40 @@ TEST(UnflownBearings, CountsTheUnflownCellsInsideTheExtentByBearing) {
   EXPECT_GT(b.score(kWest), 40u);
   EXPECT_EQ(b.score(kEast), 0u);
   EXPECT_GT(b.score(kWest), b.score(kNorth));
-  // The same bearing, a turn apart, is the same bin.
-  EXPECT_EQ(b.score(kWest), b.score(kWest + 2.0f * static_cast<float>(M_PI)));
-  EXPECT_EQ(b.score(kWest), b.score(kWest - 2.0f * static_cast<float>(M_PI)));
-  // Nothing counted twice: the cones of the 36 bins, 7 bins each, count every cell 7 times.
-  uint32_t sum = 0;
-  for (int k = 0; k < UnflownBearings::kBins; ++k) sum += b.score((k + 0.5f) * 2.0f * static_cast<float>(M_PI) / UnflownBearings::kBins);
-  EXPECT_EQ(sum, b.total() * (2 * UnflownBearings::kHalfConeBins + 1));
+  // The same bearing, a turn apart, is the same bin (3.0 rad is inside a bin, not on an edge).
+  EXPECT_EQ(b.score(3.0f), b.score(3.0f + 2.0f * static_cast<float>(M_PI)));
+  EXPECT_EQ(b.score(3.0f), b.score(3.0f - 2.0f * static_cast<float>(M_PI)));
+}
+
+// Against a count by angle, cell by cell, in a scene with no symmetry: a bearing on a multiple
+// of 10 degrees scores the unflown cells within +-35 degrees of it (those on the cone's edges
+// either way).
+TEST(UnflownBearings, AScoreIsTheUnflownCellsWithin35DegreesUpTo16Cells) {
+  VisitedGrid g;
+  for (float x = 0.0f; x <= 12.0f; x += 0.5f) g.mark({x, 0.3f * x});
+  g.mark({1.0f, 9.0f});
+  g.mark({-3.0f, -5.0f});
+  const Point2 from{6.2f, 1.5f};
+  UnflownBearings b;
+  b.count(g, from);
+  int cx = 0, cy = 0;
+  ASSERT_TRUE(g.cell_of(from, cx, cy));
+  for (int k = 0; k < UnflownBearings::kBins; ++k) {
+    const double bearing = k * 2.0 * M_PI / UnflownBearings::kBins;
+    uint32_t inside = 0, edge = 0;
+    for (int dy = -16; dy <= 16; ++dy) {
+      for (int dx = -16; dx <= 16; ++dx) {
+        if ((dx == 0 && dy == 0) || dx * dx + dy * dy > 256) continue;
+        if (!g.in_extent(cx + dx, cy + dy) || g.visited_cell(cx + dx, cy + dy)) continue;
+        const double off = std::fabs(std::remainder(std::atan2(dy, dx) - bearing, 2.0 * M_PI)) * 180.0 / M_PI;
+        inside += off < 34.99 ? 1 : 0;
+        edge += off >= 34.99 && off <= 35.01 ? 1 : 0;
+      }
+    }
+    SCOPED_TRACE(::testing::Message() << "bearing " << k * 10 << " degrees");
+    EXPECT_GE(b.score(static_cast<float>(bearing)), inside);
+    EXPECT_LE(b.score(static_cast<float>(bearing)), inside + edge);
+  }
 }
 
 TEST(UnflownBearings, NothingCountedOffTheGridOrFromANonFinitePoint) {
@@ -72,12 +99,15 @@ TEST(UnflownBearings, NothingCountedOffTheGridOrFromANonFinitePoint) {
   b.count(empty, {0, 0});
   EXPECT_EQ(b.total(), 0u);
   const VisitedGrid g = corridor_flown_west_rooms_not();
+  // Each count starts afresh: a count from off the grid after one from inside it is empty.
+  b.count(g, {12.0f, 0});
+  EXPECT_GT(b.total(), 0u);
   b.count(g, {1000.0f, 0});
   EXPECT_EQ(b.total(), 0u);
+  b.count(g, {12.0f, 0});
   b.count(g, {std::nanf(""), 0});
   EXPECT_EQ(b.total(), 0u);
   b.count(g, {12.0f, 0});
-  EXPECT_GT(b.total(), 0u);
   EXPECT_EQ(b.score(std::nanf("")), 0u);
   EXPECT_EQ(b.score(INFINITY), 0u);
 }
@@ -199,6 +229,32 @@ TEST(SrtStarPlanner, ASteeredWaypointNotReachedPausesSteeringUntilAWaypointIsRea
   }
   EXPECT_GT(west, 0);  // drawn as paper 002 draws: either way
   EXPECT_LT(west, 20);
+}
+
+// A time-out while paused is not a second pause (nor does it resume steering), and reset()
+// forgets the pause, the counts and the flown grid.
+TEST(SrtStarPlanner, ATimeOutWhilePausedStaysOnePauseAndResetForgetsIt) {
+  const SegmentWorld corridor = long_corridor();
+  const LaserModel urg = LaserModel::urg04lx();
+  const auto planner = restarted_at_the_east_end(true, 5);
+  const uint32_t steered = planner->steered_draws();
+  EXPECT_GE(steered, 1u);
+  bool fresh = false;
+  const LaserScan scan = corridor.scan(urg, kEastEnd.x, kEastEnd.y, kEastEnd.theta);
+  ASSERT_EQ(planner->update(kEastEnd, scan, TimeUs{62000000}, fresh), Status::kOk);
+  ASSERT_EQ(planner->update(kEastEnd, scan, TimeUs{93000000}, fresh), Status::kOk);
+  EXPECT_EQ(planner->restarts(RestartReason::kTimeout), 3u);
+  EXPECT_EQ(planner->restarts(), 3u);
+  EXPECT_TRUE(planner->steer_paused());
+  EXPECT_EQ(planner->steer_pauses(), 1u);
+  EXPECT_EQ(planner->steered_draws(), steered);  // none while paused
+  planner->reset();
+  EXPECT_FALSE(planner->steer_paused());
+  EXPECT_EQ(planner->steer_pauses(), 0u);
+  EXPECT_EQ(planner->steered_draws(), 0u);
+  EXPECT_EQ(planner->restarts(), 0u);
+  EXPECT_EQ(planner->restarts(RestartReason::kTimeout), 0u);
+  EXPECT_EQ(planner->visited().marked_cells(), 0u);
 }
 
 }  // namespace

@@ -350,8 +350,8 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
       out.emplace_back("srt_restarts", e->planner()->restarts());
       // Why: a timeout or a full tree erases what the tree knew; exhausted is the search
       // starting once more after such a tree ran out.
-      for (const auto why : {exploration::RestartReason::kTimeout, exploration::RestartReason::kTreeFull,
-                             exploration::RestartReason::kExhausted}) {
+      for (std::size_t i = 1; i < exploration::kRestartReasonCount; ++i) {  // 0 is kNone
+        const auto why = static_cast<exploration::RestartReason>(i);
         std::string key = "srt_restarts.";
         key.append(exploration::to_string(why));
         out.emplace_back(std::move(key), e->planner()->restarts(why));

@@ -116,7 +116,7 @@ void SrtStarPlanner::reset() {
   pursuing_handed_up_ = false;
   grown_by_handed_up_.reset();  // node ids start again at 0
   drawn_steered_ = pursued_steered_ = steer_paused_ = false;
-  steer_pauses_ = 0;
+  steer_pauses_ = steered_draws_ = 0;
   waypoints_issued_ = 0;
   blocked_arrivals_ = 0;
   frontiers_handed_up_ = 0;
@@ -133,7 +133,9 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
   if (!pose.finite()) return Status::kInvalidArgument;
   if (scan.beam_count == 0) return Status::kInvalidArgument;
   const uint32_t issued = waypoints_issued_;
-  visited_.mark({pose.x, pose.y});
+  // Not while an arrival step is worked on: its result must not depend on the poses given
+  // meanwhile (sliced and one-shot steps agree), and the vehicle waits on the spot.
+  if (step_ == Step::kNone) visited_.mark({pose.x, pose.y});
 
   if (step_ != Step::kNone) {
     // An arrival step is under way: this call only continues it.
@@ -174,8 +176,8 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     } else if (late) {
       if (mode_ == PlannerMode::kForward) {
         // Not reached in time: counted as visited, or the next tree would draw it first again.
-        visited_.mark(waypoint_);
-        visited_.mark(pursued_);
+        visited_.mark(waypoint_, VisitedGrid::Extent::kKeep);
+        visited_.mark(pursued_, VisitedGrid::Extent::kKeep);
         // A steered waypoint not reached (gt-building: the 1 m strip between the inner room and
         // the outer wall, which r_safe on both walls keeps the vehicle out of, faces the whole
         // unflown west): the fresh tree would be steered straight back to it, restart after
@@ -300,12 +302,13 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   const uint16_t min_step_mm = static_cast<uint16_t>(std::lround(min_step * 1000.0f));
   constexpr uint16_t kRays = SectorScan::kRaysPerSector;
   const bool steer = srt_.steer_unflown && !steer_paused_;
-  if (steer && !bearings_counted_) {  // a slice of its own; the draw comes next
+  if (steer && !bearings_counted_) {  // a work item of its own; the draw follows
     bearings_counted_ = true;
     return bearings_.count(visited_, node.position);
   }
   frontier_ = steer ? draw_toward_unflown(tree_, current_, bearings_, prng_) : tree_.frontiers().size();
   drawn_steered_ = frontier_ < tree_.frontiers().size();
+  steered_draws_ += drawn_steered_ ? 1 : 0;
   if (!drawn_steered_)
     frontier_ = draw_frontier(tree_, current_, live_, srt_.prefer_unvisited ? &visited_ : nullptr, prng_);
   const Frontier& f = tree_.frontier(frontier_);
@@ -323,10 +326,10 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   }
   candidate_count_ = n;
   step_ = Step::kDraw;
-  // Choosing among the unvisited frontiers is two more passes over the list; steering, two
-  // bearings (atan2) for each of the node's frontiers.
-  const uint32_t passes = srt_.prefer_unvisited ? 3 : 1;
-  const uint32_t steering = steer ? 2 * static_cast<uint32_t>(live_) * work::kRegionAngle : 0;
+  // Choosing among the unvisited frontiers is two more passes over the list; steering, three
+  // passes, each with a bearing (atan2) for every frontier of the node (at most).
+  const uint32_t passes = srt_.prefer_unvisited || steer ? 3 : 1;
+  const uint32_t steering = steer ? 3 * static_cast<uint32_t>(live_) * work::kRegionAngle : 0;
   return 1 + steering + passes * static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
 }
 

@@ -13,8 +13,10 @@ int bin_of(float bearing_rad) {
   constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
   float a = std::fmod(bearing_rad, kTwoPi);
   if (a < 0.0f) a += kTwoPi;
-  const int b = static_cast<int>(a / kTwoPi * UnflownBearings::kBins);
-  return b >= UnflownBearings::kBins ? UnflownBearings::kBins - 1 : b;
+  // Bins centred on multiples of 10 degrees: the walls' own bearings (0, 90, 180 degrees in
+  // a building drawn on axes) fall in the middle of a bin, and a cone of +-3 bins is symmetric.
+  const int b = static_cast<int>(a / kTwoPi * UnflownBearings::kBins + 0.5f);
+  return b >= UnflownBearings::kBins ? b - UnflownBearings::kBins : b;
 }
 }  // namespace
 

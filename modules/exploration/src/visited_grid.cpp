@@ -22,17 +22,18 @@ bool VisitedGrid::cell_of(Point2 p, int& ix, int& iy) const {
   return true;
 }
 
-void VisitedGrid::set(int ix, int iy) {
+void VisitedGrid::set(int ix, int iy, Extent extent) {
   if (ix < 0 || iy < 0 || ix >= kSide || iy >= kSide) return;
   const std::size_t i = static_cast<std::size_t>(iy) * kSide + static_cast<std::size_t>(ix);
   bits_[i / 64] |= uint64_t{1} << (i % 64);
+  if (extent == Extent::kKeep) return;
   min_ix_ = std::min(min_ix_, ix);
   min_iy_ = std::min(min_iy_, iy);
   max_ix_ = std::max(max_ix_, ix);
   max_iy_ = std::max(max_iy_, iy);
 }
 
-void VisitedGrid::mark(Point2 p) {
+void VisitedGrid::mark(Point2 p, Extent extent) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
   if (!anchored_) {
     constexpr float kHalf = 0.5f * kSide * kCellM;
@@ -42,7 +43,7 @@ void VisitedGrid::mark(Point2 p) {
   int ix = 0, iy = 0;
   if (!cell_of(p, ix, iy)) return;
   for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) set(ix + dx, iy + dy);
+    for (int dx = -1; dx <= 1; ++dx) set(ix + dx, iy + dy, extent);
 }
 
 bool VisitedGrid::visited(Point2 p) const {

@@ -18,7 +18,12 @@
 // With srt.prefer_unvisited the frontier is drawn at random among those of the current node that
 // lie where the vehicle has not flown (VisitedGrid, kept across section V's restarts), and
 // among all of them only when none does; off, among all of them, as in paper 002. A forward
-// waypoint the time limit gives up counts as visited, with its frontier.
+// waypoint the time limit gives up counts as visited, with its frontier. With
+// srt.steer_unflown the draw is among the frontiers whose bearing from the node faces the most
+// cells never flown (UnflownBearings: within 16 m, +-35 degrees, inside the flown area's
+// bounding box), counted once per choice as a work item of its own; after a steered waypoint
+// the time limit gave up, the draws are unsteered until a forward waypoint is reached. Poses
+// given while an arrival step is under way are not remembered as flown.
 //
 // Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
 // and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
@@ -67,7 +72,7 @@ const char* to_string(PlannerMode m);
 // kExhausted: a tree grown after a kTimeout or kTreeFull restart ran out of frontiers; it knew
 // only what it had seen since, so exploration starts once more from where the vehicle is.
 enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull, kExhausted };
-inline constexpr std::size_t kRestartReasonCount = 4;
+inline constexpr std::size_t kRestartReasonCount = static_cast<std::size_t>(RestartReason::kExhausted) + 1;
 const char* to_string(RestartReason r);
 
 // Index (into tree.frontiers()) of one of `node`'s `live` frontiers, drawn at random: with a
@@ -116,6 +121,7 @@ class SrtStarPlanner {
   // Times steer_unflown was paused because a steered waypoint was not reached in time.
   uint32_t steer_pauses() const { return steer_pauses_; }
   bool steer_paused() const { return steer_paused_; }
+  uint32_t steered_draws() const { return steered_draws_; }  // frontiers drawn by steering
   TimeUs waypoint_time() const { return waypoint_time_; }
   const VisitedGrid& visited() const { return visited_; }  // where the vehicle has flown
 
@@ -154,6 +160,7 @@ class SrtStarPlanner {
   bool pursued_steered_ = false;  // ... and the one the forward waypoint serves
   bool steer_paused_ = false;     // a steered waypoint timed out: unsteered until one is reached
   uint32_t steer_pauses_ = 0;
+  uint32_t steered_draws_ = 0;
   Prng prng_{1};
   PlannerMode mode_ = PlannerMode::kIdle;
   Point2 waypoint_{};

@@ -22,9 +22,10 @@ namespace kestrel::exploration {
 
 class UnflownBearings {
  public:
-  static constexpr int kBins = 36;          // 10 degrees each
+  static constexpr int kBins = 36;          // 10 degrees each, centred on multiples of 10
   static constexpr int kReachCells = 16;    // 16 m: across gt-building from either end's rooms
-  static constexpr int kHalfConeBins = 3;   // a frontier's score: its bin and 3 either side
+  static constexpr int kHalfConeBins = 3;   // a frontier's score: its bin and 3 either side,
+                                            // a cone of +-35 degrees
   static constexpr uint8_t kBeyondReach = 0xFF;
 
   UnflownBearings();

@@ -25,8 +25,11 @@ class VisitedGrid {
 
   void clear();
   // Marks the neighbourhood of (x, y), world frame; the first mark after clear() fixes the
-  // grid's centre. Non-finite positions are ignored.
-  void mark(Point2 p);
+  // grid's centre. Non-finite positions are ignored. A place counted as flown without having
+  // been flown (a waypoint the time limit gave up, and its frontier) does not widen the extent,
+  // which stands for the building's outline as far as the vehicle has been.
+  enum class Extent : uint8_t { kWiden, kKeep };
+  void mark(Point2 p, Extent extent = Extent::kWiden);
   bool visited(Point2 p) const;
   std::size_t marked_cells() const;
 
@@ -37,7 +40,7 @@ class VisitedGrid {
   bool in_extent(int ix, int iy) const;
 
  private:
-  void set(int ix, int iy);
+  void set(int ix, int iy, Extent extent);
 
   std::array<uint64_t, kSide * kSide / 64> bits_{};
   Point2 origin_{};  // world position of cell (0, 0)'s corner
