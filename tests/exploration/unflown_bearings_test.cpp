@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "kestrel/exploration/srt_star_planner.hpp"
@@ -185,44 +186,62 @@ std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(bool steer, uint32_t s
   return planner;
 }
 
-// The fresh tree's first waypoint is west, towards the unflown rooms, on every seed; unsteered,
-// either way.
-TEST(SrtStarPlanner, SteeredAFreshTreeHeadsForTheUnflownSideOfTheBuilding) {
+// The vehicle arrives at the fresh tree's first waypoint, near the corridor's east end. Where
+// the new node owns frontiers both ways (a node east of the root has its west ones inside the
+// root's safe region), the next waypoint, steered, is west, towards the unflown rooms, on
+// every seed; unsteered, either way.
+TEST(SrtStarPlanner, SteeredTheNextWaypointHeadsForTheUnflownSideOfTheBuilding) {
+  const SegmentWorld corridor = long_corridor();
+  const LaserModel urg = LaserModel::urg04lx();
   for (const bool steer : {true, false}) {
-    int west = 0;
-    for (uint32_t seed = 1; seed <= 20; ++seed) {
+    int both_ways = 0, west = 0;
+    for (uint32_t seed = 1; seed <= 40; ++seed) {
       const auto planner = restarted_at_the_east_end(steer, seed);
-      west += planner->waypoint().x < kEastEnd.x ? 1 : 0;
+      const Point2 w = planner->waypoint();
+      bool fresh = false;
+      ASSERT_EQ(planner->update({w.x, w.y, kNorth}, corridor.scan(urg, w.x, w.y, kNorth), TimeUs{32000000}, fresh),
+                Status::kOk);
+      ASSERT_TRUE(fresh);
+      ASSERT_EQ(planner->mode(), PlannerMode::kForward);
       EXPECT_FALSE(planner->steer_paused());
+      bool has_west = false, has_east = false;
+      for (const Frontier& f : planner->tree().frontiers()) {
+        if (f.node != planner->current_node()) continue;
+        has_west |= f.position.x < w.x;
+        has_east |= f.position.x > w.x;
+      }
+      if (!has_west || !has_east) continue;
+      ++both_ways;
+      west += planner->waypoint().x < w.x ? 1 : 0;
     }
+    std::printf("%s: %d of %d nodes with frontiers both ways went west\n", steer ? "steered" : "unsteered", west, both_ways);
+    EXPECT_GE(both_ways, 8);
     if (steer) {
-      EXPECT_EQ(west, 20);
+      EXPECT_EQ(west, both_ways);
     } else {
       EXPECT_GT(west, 0);
-      EXPECT_LT(west, 20);
+      EXPECT_LT(west, both_ways);
     }
   }
 }
 
 // A steered waypoint the time limit gives up would be steered to again by the next tree, restart
 // after restart (gt-building's strip beside the inner room): the next choices are unsteered
-// until a waypoint is reached.
+// until a waypoint is reached. (The first tree's waypoint was steered: the returns of the root's
+// scan reach beyond where the vehicle had flown.)
 TEST(SrtStarPlanner, ASteeredWaypointNotReachedPausesSteeringUntilAWaypointIsReached) {
   const SegmentWorld corridor = long_corridor();
   const LaserModel urg = LaserModel::urg04lx();
   int west = 0;
   for (uint32_t seed = 1; seed <= 20; ++seed) {
     const auto planner = restarted_at_the_east_end(true, seed);
-    bool fresh = false;
-    ASSERT_EQ(planner->update(kEastEnd, corridor.scan(urg, kEastEnd.x, kEastEnd.y, kEastEnd.theta), TimeUs{62000000}, fresh),
-              Status::kOk);
-    ASSERT_EQ(planner->restarts(), 2u);
     EXPECT_TRUE(planner->steer_paused());
     EXPECT_EQ(planner->steer_pauses(), 1u);
     west += planner->waypoint().x < kEastEnd.x ? 1 : 0;
     // Reached: steering again.
     const Point2 w = planner->waypoint();
-    ASSERT_EQ(planner->update({w.x, w.y, kNorth}, corridor.scan(urg, w.x, w.y, kNorth), TimeUs{63000000}, fresh),
+    bool fresh = false;
+    ASSERT_EQ(planner->update({w.x, w.y, kNorth}, corridor.scan(urg, w.x, w.y, kNorth), TimeUs{32000000}, fresh),
               Status::kOk);
     EXPECT_FALSE(planner->steer_paused());
     EXPECT_EQ(planner->steer_pauses(), 1u);
@@ -237,6 +256,7 @@ TEST(SrtStarPlanner, ATimeOutWhilePausedStaysOnePauseAndResetForgetsIt) {
   const SegmentWorld corridor = long_corridor();
   const LaserModel urg = LaserModel::urg04lx();
   const auto planner = restarted_at_the_east_end(true, 5);
+  ASSERT_TRUE(planner->steer_paused());
   const uint32_t steered = planner->steered_draws();
   EXPECT_GE(steered, 1u);
   bool fresh = false;

@@ -245,6 +245,7 @@ void SrtStarPlanner::work_on_arrival(TimeUs now) {
       case Step::kTree:
         used += tree_.advance(sectors_, budget - used);
         if (!tree_.adding()) {
+          used += widen_extent_to_returns();
           used += drop_frontiers_seen_through_keep_outs();
           step_ = Step::kPick;
           bearings_counted_ = false;
@@ -393,6 +394,27 @@ uint32_t SrtStarPlanner::hand_up_or_drop(std::size_t i) {
     }
   }
   tree_.remove_frontier(i);
+  return used;
+}
+
+uint32_t SrtStarPlanner::widen_extent_to_returns() {
+  // The flown area alone is a poor outline of the building: a room never flown is outside its
+  // bounding box and so never steered to (gt-building: the south rooms, when the first flights
+  // went north). Every node's returns widen it to the walls the laser has seen; one beam in
+  // kExtentBeamStride is enough for a box.
+  constexpr std::size_t kExtentBeamStride = 4;
+  if (!srt_.steer_unflown || !sectors_.beam_table_fits(job_scan_)) return 0;
+  const float edge = job_pose_.theta + SectorScan::start_of(job_scan_);
+  const float c = std::cos(edge), s = std::sin(edge);
+  uint32_t used = work::kTableEntry;
+  for (std::size_t i = 0; i < job_scan_.beam_count; i += kExtentBeamStride) {
+    const uint16_t r_mm = job_scan_.range_mm[i];
+    if (!LaserScan::is_return(r_mm)) continue;
+    const float r = static_cast<float>(r_mm) * 1e-3f;
+    const float bx = r * sectors_.beam_cos(i), by = r * sectors_.beam_sin(i);
+    visited_.widen_extent({job_pose_.x + c * bx - s * by, job_pose_.y + s * bx + c * by});
+    used += work::kPathBeam;
+  }
   return used;
 }
 

@@ -46,6 +46,15 @@ void VisitedGrid::mark(Point2 p, Extent extent) {
     for (int dx = -1; dx <= 1; ++dx) set(ix + dx, iy + dy, extent);
 }
 
+void VisitedGrid::widen_extent(Point2 p) {
+  int ix = 0, iy = 0;
+  if (!cell_of(p, ix, iy)) return;
+  min_ix_ = std::min(min_ix_, ix);
+  min_iy_ = std::min(min_iy_, iy);
+  max_ix_ = std::max(max_ix_, ix);
+  max_iy_ = std::max(max_iy_, iy);
+}
+
 bool VisitedGrid::visited(Point2 p) const {
   int ix = 0, iy = 0;
   return cell_of(p, ix, iy) && visited_cell(ix, iy);

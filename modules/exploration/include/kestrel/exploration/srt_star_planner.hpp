@@ -146,6 +146,8 @@ class SrtStarPlanner {
   void set_waypoint(Point2 p, TimeUs now);
   // Whether the segment a-b enters a keep-out box grown by the clearance (SrtParams::keep_out).
   bool crosses_keep_out(Point2 a, Point2 b) const;
+  // steer_unflown: widens the flown grid's extent to the arrival scan's returns.
+  uint32_t widen_extent_to_returns();
   // Drops the current node's frontiers whose sight line from the node crosses a keep-out box.
   uint32_t drop_frontiers_seen_through_keep_outs();
 

@@ -30,13 +30,17 @@ class VisitedGrid {
   // which stands for the building's outline as far as the vehicle has been.
   enum class Extent : uint8_t { kWiden, kKeep };
   void mark(Point2 p, Extent extent = Extent::kWiden);
+  // Widens the extent to p's cell without marking it: a laser return, so the building reaches
+  // at least there. Ignored before the first mark, off the grid, or for a non-finite p.
+  void widen_extent(Point2 p);
   bool visited(Point2 p) const;
   std::size_t marked_cells() const;
 
   // Cell of p, or false outside the grid (or before the first mark).
   bool cell_of(Point2 p, int& ix, int& iy) const;
   bool visited_cell(int ix, int iy) const;  // false outside the grid
-  // Inside the bounding box of the marked cells (false before the first mark).
+  // Inside the extent: the bounding box of the marked cells and the returns it was widened to
+  // (false before the first mark).
   bool in_extent(int ix, int iy) const;
 
  private:
