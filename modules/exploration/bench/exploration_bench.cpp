@@ -14,6 +14,8 @@
 #include "kestrel/exploration/approach_limiter.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
 #include "kestrel/exploration/srt_star_planner.hpp"
+#include "kestrel/exploration/unflown_bearings.hpp"
+#include "kestrel/exploration/visited_grid.hpp"
 
 namespace {
 
@@ -186,6 +188,23 @@ void BM_SectorScanCorridorUrg(benchmark::State& s) {
 void BM_SectorScanTablesUrg(benchmark::State& s) {
   sector_scan(s, 682, 240.0, true);
 }
+// The work item srt.steer_unflown adds to each choice: the unflown cells around a node in the
+// middle of a gt-building-sized outline (24 x 16 m), with a corridor and two rooms flown.
+void BM_UnflownCount(benchmark::State& s) {
+  auto grid = std::make_unique<VisitedGrid>();
+  for (float x = 0.5f; x <= 23.5f; x += 0.25f) grid->mark({x, 8.0f});
+  for (float y = 1.0f; y <= 15.0f; y += 0.25f) {
+    grid->mark({4.0f, y});
+    grid->mark({14.0f, y});
+  }
+  grid->widen_extent({0.0f, 0.0f});
+  grid->widen_extent({24.0f, 16.0f});
+  auto bearings = std::make_unique<UnflownBearings>();
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(bearings->count(*grid, {12.0f, 8.0f}));
+    benchmark::DoNotOptimize(bearings->total());
+  }
+}
 BENCHMARK(BM_GuidanceStepUrg)->Name("exploration/guidance_step/urg04lx_682");
 BENCHMARK(BM_GuidanceStepUtm)->Name("exploration/guidance_step/utm30lx_1081");
 BENCHMARK(BM_ApproachCornerUrg)->Name("exploration/approach_limit_corner/urg04lx_682");
@@ -198,5 +217,6 @@ BENCHMARK(BM_SectorScanTablesUrg)->Name("exploration/sector_scan_new_tables/urg0
 BENCHMARK(BM_SrtArrivalCyclesUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682")->DenseRange(1, 8);
 BENCHMARK(BM_SrtArrivalCyclesCorridorUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682_corridor")->DenseRange(1, 16);
 BENCHMARK(BM_SrtArrivalCyclesUtm)->Name("exploration/srt_arrival_cycles/utm30lx_1081")->DenseRange(1, 8);
+BENCHMARK(BM_UnflownCount)->Name("exploration/unflown_count");
 
 }  // namespace

@@ -11,7 +11,8 @@
 // extent of what has been flown (the building's outline, as far as the vehicle knows it: cells
 // outside it are more often outside the walls than rooms), by bearing, in kBins bins.
 //
-// No trigonometry per cell: each cell offset's bin is tabled once, at construction. 1.2 KB.
+// No trigonometry per cell: each cell offset's bin is tabled once, at construction. 1.2 KB;
+// a count is 37.1 k instructions on the Verdex (exploration/unflown_count).
 #include <array>
 #include <cstdint>
 
