@@ -8,8 +8,10 @@
 // the east half (README, Exploration). A frontier's own cell says little (VisitedGrid's
 // prefer_unvisited: a frontier 3.5 m away is unflown in nearly every direction); the cells
 // beyond it do. Counted here: the unflown cells within kReachCells of the node, inside the
-// extent of what has been flown (the building's outline, as far as the vehicle knows it: cells
-// outside it are more often outside the walls than rooms), by bearing, in kBins bins.
+// grid's extent (the bounding box of the cells flown and of the returns the planner widened it
+// to: the building's outline as far as the laser has seen it; cells outside it are more often
+// outside the walls than rooms), by bearing, in kBins bins. A box: in an L- or U-shaped
+// building it takes in space outside the walls too, which then draws the steering.
 //
 // No trigonometry per cell: each cell offset's bin is tabled once, at construction. 1.2 KB;
 // a count is 37.1 k instructions on the Verdex (exploration/unflown_count).
