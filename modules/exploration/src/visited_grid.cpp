@@ -26,7 +26,10 @@ void VisitedGrid::set(int ix, int iy, Extent extent) {
   if (ix < 0 || iy < 0 || ix >= kSide || iy >= kSide) return;
   const std::size_t i = static_cast<std::size_t>(iy) * kSide + static_cast<std::size_t>(ix);
   bits_[i / 64] |= uint64_t{1} << (i % 64);
-  if (extent == Extent::kKeep) return;
+  if (extent == Extent::kWiden) include(ix, iy);
+}
+
+void VisitedGrid::include(int ix, int iy) {
   min_ix_ = std::min(min_ix_, ix);
   min_iy_ = std::min(min_iy_, iy);
   max_ix_ = std::max(max_ix_, ix);
@@ -48,11 +51,7 @@ void VisitedGrid::mark(Point2 p, Extent extent) {
 
 void VisitedGrid::widen_extent(Point2 p) {
   int ix = 0, iy = 0;
-  if (!cell_of(p, ix, iy)) return;
-  min_ix_ = std::min(min_ix_, ix);
-  min_iy_ = std::min(min_iy_, iy);
-  max_ix_ = std::max(max_ix_, ix);
-  max_iy_ = std::max(max_iy_, iy);
+  if (cell_of(p, ix, iy)) include(ix, iy);
 }
 
 bool VisitedGrid::visited(Point2 p) const {

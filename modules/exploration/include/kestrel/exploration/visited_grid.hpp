@@ -45,6 +45,7 @@ class VisitedGrid {
 
  private:
   void set(int ix, int iy, Extent extent);
+  void include(int ix, int iy);  // widens the extent to a cell inside the grid
 
   std::array<uint64_t, kSide * kSide / 64> bits_{};
   Point2 origin_{};  // world position of cell (0, 0)'s corner
