@@ -172,6 +172,45 @@ TEST(MissionController, ExploreThenReturnsAlongTheTrailAndLandsAtHome) {
   EXPECT_NEAR(r.v.nav.position_m.y(), 2.0f, 0.2f);
 }
 
+// GIVEN an explore mission home again WHEN it lands THEN the descent flies velocity set-points
+// towards home, which the composition bounds against the scan (home is a point of the
+// estimate's frame and may have drifted against a wall), and it settles there; a hover
+// mission, with no drift to fear, still lands on a position set-point.
+TEST(MissionController, LandingAfterExploringFliesBoundableVelocitySetPoints) {
+  MissionRun r;
+  MissionParams p;
+  ExplorerOutput e;
+  ASSERT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 160}}));
+  ASSERT_TRUE(r.run_until(Phase::kLand, 60, &e));
+  ASSERT_TRUE(r.mc.returned_home());
+  // Offset the vehicle within the arrival radius, as a limiter holding it off a wall would.
+  r.v.nav.position_m.x() += 0.12f;
+  float last_z = r.v.nav.position_m.z() + 1.0f;
+  int land_steps = 0;
+  for (int i = 0; i < 2000 && r.mc.phase() == Phase::kLand; ++i, ++land_steps) {
+    const Eigen::Vector2f to_home = r.mc.home().head<2>() - r.v.nav.position_m.head<2>();
+    const GuidanceSetpoint s = r.step(&e);
+    if (r.mc.phase() != Phase::kLand) break;
+    ASSERT_EQ(s.mode, GuidanceSetpoint::Mode::kVelocity);
+    EXPECT_LE(s.velocity_mps.head<2>().norm(), to_home.norm() + 1e-4f);  // 1/s towards home
+    if (to_home.norm() > 1e-2f) {
+      EXPECT_GT(s.velocity_mps.head<2>().dot(to_home), 0.0f);
+    }
+    EXPECT_LE(s.position_m.z(), last_z);  // the descent ramp never climbs
+    last_z = s.position_m.z();
+  }
+  EXPECT_GT(land_steps, 10);
+  EXPECT_EQ(r.mc.phase(), Phase::kLanded);
+  EXPECT_NEAR(r.v.nav.position_m.x(), r.mc.home().x(), 0.02f);
+  EXPECT_NEAR(r.v.nav.position_m.y(), r.mc.home().y(), 0.02f);
+
+  MissionRun hover;
+  p.hover_duration_s = 1;
+  ASSERT_EQ(hover.mc.configure(MissionKind::kHover, p), Status::kOk);
+  ASSERT_TRUE(hover.run_until(Phase::kLand, 20));
+  EXPECT_EQ(hover.step().mode, GuidanceSetpoint::Mode::kPosition);
+}
+
 TEST(MissionController, BlockedWayHomeLandsWhereItIs) {
   MissionRun r;
   MissionParams p;

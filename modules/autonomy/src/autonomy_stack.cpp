@@ -156,9 +156,10 @@ void AutonomyStack::guidance_task(TimeUs now) {
     ++counters_.guidance_steps;
   }
   setpoint_ = mission_.step(now, nav_, explorer_ != nullptr ? &explorer_out_ : nullptr);
-  // Flying home, the explorer's approach limiter bounds the trail's velocity set-point against
-  // the newest scan, matched or not (return_velocity_bound.hpp says why).
-  if (explorer_ != nullptr && mission_.phase() == mission::Phase::kReturn &&
+  // Flying home and landing there, the explorer's approach limiter bounds the mission's
+  // velocity set-point against the newest scan, matched or not (return_velocity_bound.hpp).
+  const bool homing = mission_.phase() == mission::Phase::kReturn || mission_.phase() == mission::Phase::kLand;
+  if (explorer_ != nullptr && homing &&
       setpoint_.mode == GuidanceSetpoint::Mode::kVelocity &&
       return_bound_.apply(now, dev_.laser.geometry().scan_period, newest_scan_, newest_scan_fresh_, nav_, *explorer_,
                           setpoint_) != Status::kOk)

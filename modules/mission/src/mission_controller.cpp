@@ -246,11 +246,25 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       }
       return s;
     }
-    case Phase::kLand:
+    case Phase::kLand: {
       ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);  // aim below the floor to settle
       if (nav.position_m.z() < params_.landed_altitude_m && std::fabs(nav.velocity_mps.z()) < 0.2f)
         enter(Phase::kLanded, now);
-      return hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
+      GuidanceSetpoint s = hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
+      if (kind_ != MissionKind::kExplore) return s;
+      // After exploring, home is a point of the estimate's drifted frame: held as a position it
+      // can lie against a wall (a landing drifted 1.4 m touched one). Velocity set-points
+      // towards it let the composition bound them against the scan, as on the way home.
+      const Eigen::Vector2f to_point = (hold_point_ - nav.position_m).head<2>();
+      s.mode = GuidanceSetpoint::Mode::kVelocity;
+      s.velocity_mps.setZero();
+      if (estimate_ok) {
+        const float dist = to_point.norm();
+        const float speed = std::min(params_.return_speed_mps, dist * kReturnGainPerS);
+        if (dist > 1e-3f) s.velocity_mps.head<2>() = to_point * (speed / dist);
+      }
+      return s;
+    }
     case Phase::kFailsafeLand: {
       // No trustworthy position: stop moving and descend; time bounds the descent because the
       // altitude estimate may be what failed.

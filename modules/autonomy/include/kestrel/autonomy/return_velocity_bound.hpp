@@ -1,10 +1,11 @@
 #pragma once
 // The flight home's velocity bound: what AutonomyStack does to the mission's set-point in
-// Phase::kReturn, on its own so that it can be tested without the loop, the devices or a
-// simulated flight.
+// Phase::kReturn and in the Phase::kLand after it, on its own so that it can be tested without
+// the loop, the devices or a simulated flight.
 //
 // Why: on the way home the trail is in the estimate's frame, which may have drifted since it
-// was drawn, so retracing it is collision-free only as far as the estimate is right. The
+// was drawn, so retracing it is collision-free only as far as the estimate is right; home,
+// where the vehicle then descends, is such a point too. The
 // explorer's approach limiter (Explorer::bound_velocity) bounds the flight against the newest
 // scan, in the body frame, matched or not: a run of rejected matches must not leave it looking
 // at old walls. It runs once per scan, like the explorer; between scans the bounded velocity

@@ -9,7 +9,8 @@
 // longer than `estimate_timeout_s`, the vehicle stops and descends in place (failsafe_land).
 // The controller turns each phase into a GuidanceSetpoint; in the explore phase it passes the
 // explorer's set-point through, pinned to the flight altitude, and records a breadcrumb trail
-// that the return phase flies back along.
+// that the return phase flies back along. Return, and the landing after it, fly velocity
+// set-points, which the composition bounds against the laser's returns.
 #include <cstddef>
 #include <cstdint>
 
