@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "corridor_node.hpp"
 #include "kestrel/exploration/srt_star_planner.hpp"
 #include "kestrel/exploration/unflown_bearings.hpp"
 #include "kestrel/exploration/visited_grid.hpp"
@@ -117,16 +118,11 @@ TEST(UnflownBearings, NothingCountedOffTheGridOrFromANonFinitePoint) {
 // frontiers face both ways along it; steered, every draw goes west, where the unflown rooms
 // are; unsteered, both ends come up.
 TEST(DrawTowardUnflown, AFreshTreeAtTheCorridorsEastEndHeadsBackWest) {
-  SegmentWorld corridor;
-  corridor.add(-20, 1, 40, 1);
-  corridor.add(-20, -1, 40, -1);
-  auto sectors = std::make_unique<SectorScan>();
-  auto tree = std::make_unique<SrtStarTree>();
-  const SrtParams params;
-  const Pose2 node{12.0f, 0, kNorth};  // facing a wall: both ends at +-90 degrees
-  ASSERT_EQ(sectors->build(corridor.scan(LaserModel::urg04lx(), node.x, node.y, node.theta), params), Status::kOk);
-  uint16_t id = kNoNode;
-  ASSERT_EQ(tree->add_node(node, *sectors, kNoNode, id), Status::kOk);
+  test_scenes::CorridorNode scene;
+  ASSERT_EQ(test_scenes::corridor_node(-20, 40, 12.0f, scene), Status::kOk);
+  SrtStarTree* tree = scene.tree.get();
+  const uint16_t id = scene.id;
+  const Pose2 node = scene.pose;
   const std::size_t live = tree->frontier_count_of(id);
   UnflownBearings b;
   b.count(corridor_flown_west_rooms_not(), {node.x, node.y});
@@ -150,12 +146,7 @@ TEST(DrawTowardUnflown, AFreshTreeAtTheCorridorsEastEndHeadsBackWest) {
   EXPECT_EQ(draw_toward_unflown(*tree, kNoNode, b, prng), tree->frontiers().size());
 }
 
-SegmentWorld long_corridor() {
-  SegmentWorld corridor;
-  corridor.add(-20, 1, 40, 1);
-  corridor.add(-20, -1, 40, -1);
-  return corridor;
-}
+SegmentWorld long_corridor() { return test_scenes::corridor(-20, 40); }
 
 constexpr Pose2 kEastEnd{12.0f, 0, kNorth};  // facing a wall: both ends at +-90 degrees
 

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "kestrel/exploration/srt_star_planner.hpp"
+#include "corridor_node.hpp"
 #include "kestrel/exploration/visited_grid.hpp"
 #include "synthetic_world.hpp"
 
@@ -53,16 +54,10 @@ TEST(VisitedGrid, OutsideTheGridAndNonFinitePositionsAreNeverVisited) {
 // A node with frontiers east and west along a corridor: with the east end visited, every draw
 // goes west; without the grid both ends come up.
 TEST(DrawFrontier, PrefersFrontiersWhereTheVehicleHasNotFlown) {
-  SegmentWorld corridor;
-  corridor.add(-20, 1, 20, 1);
-  corridor.add(-20, -1, 20, -1);
-  auto sectors = std::make_unique<SectorScan>();
-  auto tree = std::make_unique<SrtStarTree>();
-  const SrtParams params;
-  const Pose2 node{0, 0, static_cast<float>(M_PI / 2)};  // facing a wall: both ends at +-90 deg
-  ASSERT_EQ(sectors->build(corridor.scan(LaserModel::urg04lx(), 0, 0, node.theta), params), Status::kOk);
-  uint16_t id = kNoNode;
-  ASSERT_EQ(tree->add_node(node, *sectors, kNoNode, id), Status::kOk);
+  test_scenes::CorridorNode scene;
+  ASSERT_EQ(test_scenes::corridor_node(-20, 20, 0, scene), Status::kOk);
+  SrtStarTree* tree = scene.tree.get();
+  const uint16_t id = scene.id;
   const std::size_t live = tree->frontier_count_of(id);
   bool any_east = false, any_west = false;
   for (const Frontier& f : tree->frontiers()) {

@@ -87,7 +87,6 @@ class SegmentWorld {
   std::vector<Segment> walls_;
 };
 
-// A scan with every beam set to the same value (a range in mm or a range code).
 // A valid estimate at (x, y), 1 m up, with this heading, at rest.
 inline NavState nav_at(float x, float y, float heading) {
   NavState n;
@@ -97,6 +96,7 @@ inline NavState nav_at(float x, float y, float heading) {
   return n;
 }
 
+// A scan with every beam set to the same value (a range in mm or a range code).
 inline LaserScan uniform_scan(const LaserModel& m, uint16_t value) {
   LaserScan s;
   s.beam_count = m.beams;
