@@ -102,16 +102,19 @@ TEST_F(TreeFixture, FullTreeRefusesTheNodeAndLeavesTheTreeUnchanged) {
 struct Flight {
   std::vector<PlannerMode> modes;
   std::vector<Point2> waypoints;
+  std::vector<Point2> first_tree;  // the waypoints issued before the first restart
   int arrivals = 0;
 };
 
-// Teleports the vehicle onto each new waypoint, facing the way it moved, until the planner
-// finishes or `max_steps` arrivals pass.
-Flight teleport(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start, int max_steps) {
+// Teleports the vehicle onto each new waypoint, facing the way it moved (or turned as the
+// planner asks when it looks back), until the planner finishes, `max_steps` arrivals pass, or,
+// with `first_tree_only`, the first tree is gone.
+Flight teleport(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start, int max_steps,
+                bool first_tree_only = false) {
   Flight fl;
   Pose2 pose = start;
   TimeUs t{};
-  for (int k = 0; k < max_steps && !planner.finished(); ++k) {
+  for (int k = 0; k < max_steps && !planner.finished() && !(first_tree_only && planner.restarts() > 0); ++k) {
     bool fresh = false;
     const LaserScan scan = world.scan(kUrg, pose.x, pose.y, pose.theta, t);
     EXPECT_EQ(planner.update(pose, scan, t, fresh), Status::kOk);
@@ -120,9 +123,10 @@ Flight teleport(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start,
     if (fresh) {
       fl.modes.push_back(planner.mode());
       fl.waypoints.push_back(planner.waypoint());
+      if (planner.restarts() == 0) fl.first_tree.push_back(planner.waypoint());
     }
     const Point2 w = planner.waypoint();
-    if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+    (void)planner.heading_target(pose, pose.theta);  // facing the way it moves, or looking back
     pose.x = w.x;
     pose.y = w.y;
     ++fl.arrivals;
@@ -154,10 +158,13 @@ std::unique_ptr<SrtStarPlanner> grown_in_l_corridors(float waypoint_time_limit_s
   return planner;
 }
 
+// The first tree explores both dead ends, backtracking out of each, and runs out on its root.
+// Running out is not trusted at once: a fresh tree on the root, which explores them again, and
+// after it runs out too, a turn to face what its root scan could not see and one last tree.
 TEST(SrtStarPlanner, ExploresBothBranchesBacktracksAndFinishesOnTheRoot) {
   auto planner = std::make_unique<SrtStarPlanner>();
   ASSERT_EQ(planner->configure({}, {}), Status::kOk);
-  const Flight fl = teleport(*planner, l_corridors(), {0, 0, static_cast<float>(M_PI / 4)}, 80);
+  const Flight fl = teleport(*planner, l_corridors(), {0, 0, static_cast<float>(M_PI / 4)}, 400);
   ASSERT_TRUE(planner->finished());
   EXPECT_EQ(planner->mode(), PlannerMode::kFinished);
   // Back where it started, with no frontier left anywhere.
@@ -165,19 +172,23 @@ TEST(SrtStarPlanner, ExploresBothBranchesBacktracksAndFinishesOnTheRoot) {
   EXPECT_NEAR(planner->waypoint().y, 0.0f, 1e-6);
   EXPECT_TRUE(planner->tree().frontiers().empty());
   bool east = false, north = false;
+  for (const Point2& w : fl.first_tree) {
+    east |= w.x > 1.5f;
+    north |= w.y > 1.5f;
+  }
+  EXPECT_TRUE(east);
+  EXPECT_TRUE(north);
   for (const SrtNode& n : planner->tree().nodes()) {
-    east |= n.position.x > 1.5f;
-    north |= n.position.y > 1.5f;
     if (n.parent != kNoNode) {
       EXPECT_LT(n.parent, planner->tree().nodes().size());
     }
   }
-  EXPECT_TRUE(east);
-  EXPECT_TRUE(north);
   int backtracks = 0;
-  for (PlannerMode m : fl.modes) backtracks += m == PlannerMode::kBacktrack ? 1 : 0;
+  for (std::size_t i = 0; i < fl.first_tree.size(); ++i) backtracks += fl.modes[i] == PlannerMode::kBacktrack ? 1 : 0;
   EXPECT_GE(backtracks, 2);  // out of each dead end
-  EXPECT_EQ(planner->restarts(), 0u);
+  EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 2u);  // once more, and after the look
+  EXPECT_EQ(planner->restarts(), 2u);
+  EXPECT_EQ(planner->look_backs(), 1u);
 }
 
 TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
@@ -209,16 +220,78 @@ TEST(SrtStarPlanner, BacktracksToTheParentWhenTheNodeHasNoFrontier) {
   EXPECT_EQ(planner->tree().nodes().size(), 2u);
 }
 
-TEST(SrtStarPlanner, EnclosedRoomFinishesAtOnce) {
+// Nothing open anywhere: the tree runs out at once, so does the fresh one, and the vehicle
+// turns on the spot to look behind it (the waypoint holds where it is); from there it sees
+// nothing open either, and exploration is finished.
+TEST(SrtStarPlanner, EnclosedRoomLooksBehindOnceThenFinishes) {
   auto planner = std::make_unique<SrtStarPlanner>();
   ASSERT_EQ(planner->configure(one_shot(), {}), Status::kOk);
   SegmentWorld room;
   room.add_box(-2, -2, 2, 2);
   bool fresh = false;
   ASSERT_EQ(planner->update({0.3f, 0.2f, 1.0f}, room.scan(kUrg, 0.3, 0.2, 1.0), TimeUs{}, fresh), Status::kOk);
-  EXPECT_TRUE(planner->finished());
+  EXPECT_TRUE(fresh);
+  ASSERT_EQ(planner->mode(), PlannerMode::kLookBack);
+  EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 1u);
+  EXPECT_EQ(planner->look_backs(), 1u);
   EXPECT_FLOAT_EQ(planner->waypoint().x, 0.3f);
   EXPECT_FLOAT_EQ(planner->waypoint().y, 0.2f);
+  float heading = 0;
+  ASSERT_TRUE(planner->heading_target({0.3f, 0.2f, 1.0f}, heading));
+  EXPECT_NEAR(angle_diff(heading, 1.0f + static_cast<float>(M_PI)), 0.0f, 1e-5f);
+  // Half-way round: still turning, nothing new.
+  ASSERT_EQ(planner->update({0.3f, 0.2f, 2.6f}, room.scan(kUrg, 0.3, 0.2, 2.6), TimeUs{3000000}, fresh), Status::kOk);
+  EXPECT_FALSE(fresh);
+  EXPECT_EQ(planner->mode(), PlannerMode::kLookBack);
+  // Turned: the last tree grows from this scan, runs out, and exploration is finished.
+  const float back = wrap_angle(1.0f + static_cast<float>(M_PI) - 0.1f);
+  ASSERT_EQ(planner->update({0.3f, 0.2f, back}, room.scan(kUrg, 0.3, 0.2, back), TimeUs{6000000}, fresh), Status::kOk);
+  EXPECT_TRUE(planner->finished());
+  EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 2u);
+  EXPECT_EQ(planner->look_backs(), 1u);
+  EXPECT_FLOAT_EQ(planner->waypoint().x, 0.3f);
+  EXPECT_FLOAT_EQ(planner->waypoint().y, 0.2f);
+}
+
+// A dead end: back at the root facing the end wall, the laser's blind arc hides the corridor
+// the vehicle came along (gt-building: back at the start facing the west wall, the unexplored
+// east half behind it). Looking back finds it, and exploration goes on.
+TEST(SrtStarPlanner, ARootFacingADeadEndLooksBackAndFindsTheWayOn) {
+  SegmentWorld dead_end;
+  dead_end.add(-1, -1, 20, -1);
+  dead_end.add(-1, 1, 20, 1);
+  dead_end.add(-1, -1, -1, 1);
+  const float west = static_cast<float>(M_PI);
+  auto planner = std::make_unique<SrtStarPlanner>();
+  ASSERT_EQ(planner->configure(one_shot(), {}), Status::kOk);
+  bool fresh = false;
+  ASSERT_EQ(planner->update({0, 0, west}, dead_end.scan(kUrg, 0, 0, west), TimeUs{}, fresh), Status::kOk);
+  ASSERT_EQ(planner->mode(), PlannerMode::kLookBack);
+  float heading = west;
+  ASSERT_TRUE(planner->heading_target({0, 0, west}, heading));
+  EXPECT_NEAR(angle_diff(heading, 0.0f), 0.0f, 1e-5f);
+  ASSERT_EQ(planner->update({0, 0, 0.1f}, dead_end.scan(kUrg, 0, 0, 0.1f), TimeUs{7000000}, fresh), Status::kOk);
+  EXPECT_TRUE(fresh);
+  ASSERT_EQ(planner->mode(), PlannerMode::kForward);
+  EXPECT_GT(planner->waypoint().x, 0.5f);  // along the corridor
+  EXPECT_EQ(planner->tree().nodes().size(), 1u);
+  EXPECT_EQ(planner->tree().nodes()[0].parent, kNoNode);
+  // Towards the waypoint again, not the look-back heading.
+  ASSERT_TRUE(planner->heading_target({0, 0, 0.1f}, heading));
+  EXPECT_NEAR(heading, std::atan2(planner->waypoint().y, planner->waypoint().x), 1e-5f);
+
+  // A turn that never comes (the vehicle held by something) ends exploration at the time limit.
+  ASSERT_EQ(planner->configure(one_shot(), {}), Status::kOk);
+  ASSERT_EQ(planner->update({0, 0, west}, dead_end.scan(kUrg, 0, 0, west), TimeUs{}, fresh), Status::kOk);
+  ASSERT_EQ(planner->mode(), PlannerMode::kLookBack);
+  const double limit = GuidanceParams{}.waypoint_time_limit_s;
+  ASSERT_EQ(planner->update({0, 0, west}, dead_end.scan(kUrg, 0, 0, west), TimeUs::from_s(limit - 0.1), fresh),
+            Status::kOk);
+  EXPECT_EQ(planner->mode(), PlannerMode::kLookBack);
+  ASSERT_EQ(planner->update({0, 0, west}, dead_end.scan(kUrg, 0, 0, west), TimeUs::from_s(limit + 0.1), fresh),
+            Status::kOk);
+  EXPECT_TRUE(planner->finished());
+  EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 1u);
 }
 
 TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
@@ -266,10 +339,15 @@ TEST(SrtStarPlanner, TreeExhaustedAfterARestartStartsOnceMore) {
   EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 1u);
   EXPECT_EQ(planner->restarts(RestartReason::kTreeFull), 0u);
   EXPECT_EQ(planner->last_restart_reason(), RestartReason::kExhausted);
-  EXPECT_TRUE(planner->finished());
+  // Nothing open there either: it turns to look behind before it gives up.
+  EXPECT_EQ(planner->mode(), PlannerMode::kLookBack);
   EXPECT_EQ(planner->tree().nodes().size(), 1u);
   EXPECT_FLOAT_EQ(planner->waypoint().x, stuck.x);
-  // Without a restart before it, an exhausted tree is simply finished (EnclosedRoomFinishesAtOnce).
+  const Pose2 turned{stuck.x, stuck.y, static_cast<float>(M_PI)};
+  ASSERT_EQ(planner->update(turned, enclosed, issued + Duration::from_s(15), fresh), Status::kOk);
+  EXPECT_TRUE(planner->finished());
+  EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 2u);
+  EXPECT_FLOAT_EQ(planner->waypoint().x, stuck.x);
 }
 
 TEST(SrtStarPlanner, HeldOffItsWaypointNearbyTheVehicleHasArrived) {
@@ -499,7 +577,7 @@ Trace fly(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start, int a
     tr.current.push_back(planner.current_node());
     tr.target.push_back(planner.target_node());
     const Point2 w = planner.waypoint();
-    if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+    (void)planner.heading_target(pose, pose.theta);  // facing the way it moves, or looking back
     pose.x = w.x;
     pose.y = w.y;
     t += Duration::from_s(1.0);
@@ -656,10 +734,12 @@ TEST(SrtStarPlanner, AVehicleWithinTheClearanceOfAWallCanLeaveIt) {
   GuidanceParams g;
   auto planner = std::make_unique<SrtStarPlanner>();
   bool fresh = false;
-  // Off (paper 002's rule, the default): every path is blocked, the root has nothing to draw.
+  // Off (paper 002's rule, the default): every path is blocked, the root has nothing to draw
+  // (nor has the fresh tree after it: the planner turns to look behind).
   ASSERT_EQ(planner->configure(p, g), Status::kOk);
   ASSERT_EQ(planner->update({0, 0, 0}, w.scan(kUrg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
-  EXPECT_TRUE(planner->finished());
+  EXPECT_EQ(planner->mode(), PlannerMode::kLookBack);
+  EXPECT_TRUE(planner->tree().frontiers().empty());
   p.rescue_frontiers = true;
   ASSERT_EQ(planner->configure(p, g), Status::kOk);
   ASSERT_EQ(planner->update({0, 0, 0}, w.scan(kUrg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
@@ -694,7 +774,7 @@ TEST(SrtStarPlanner, RescuedFrontiersReachTheCorridorsEndAndTheTreeStillFinishes
   // Over 40 seeds of teleported flights, trees reached the corridor's east end on 20 and the
   // room on 11 with paper 002's rules; 38 and 24 with rescue_frontiers (the room's door leaves
   // 0.4 m for a waypoint, and frontiers seen through it are lost in other ways). Handing up
-  // must not grow a tree without end: every flight finishes on its first tree.
+  // must not grow a tree without end: every flight's first tree runs out.
   for (bool rescue : {false, true}) {
     SCOPED_TRACE(::testing::Message() << "rescue " << rescue);
     int east_ends = 0, rooms = 0, handed_up = 0;
@@ -705,13 +785,13 @@ TEST(SrtStarPlanner, RescuedFrontiersReachTheCorridorsEndAndTheTreeStillFinishes
       p.rescue_frontiers = rescue;
       auto planner = std::make_unique<SrtStarPlanner>();
       ASSERT_EQ(planner->configure(p, {}), Status::kOk);
-      (void)teleport(*planner, corridor_with_side_room(), {0.0f, 7.0f, 0.0f}, 400);
-      EXPECT_TRUE(planner->finished());
-      EXPECT_EQ(planner->restarts(), 0u);
+      const Flight fl = teleport(*planner, corridor_with_side_room(), {0.0f, 7.0f, 0.0f}, 400, true);
+      EXPECT_EQ(planner->restarts(), 1u);
+      EXPECT_EQ(planner->last_restart_reason(), RestartReason::kExhausted);
       bool east_end = false, room = false;
-      for (const SrtNode& n : planner->tree().nodes()) {
-        east_end |= n.position.x > 7.5f && n.position.y > 6.0f;
-        room |= n.position.y < 5.7f;
+      for (const Point2& w : fl.first_tree) {
+        east_end |= w.x > 7.5f && w.y > 6.0f;
+        room |= w.y < 5.7f;
       }
       east_ends += east_end;
       rooms += room;

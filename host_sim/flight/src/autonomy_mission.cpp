@@ -349,7 +349,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
     if (e->planner() != nullptr) {
       out.emplace_back("srt_restarts", e->planner()->restarts());
       // Why: a timeout or a full tree erases what the tree knew; exhausted is the search
-      // starting once more after such a tree ran out.
+      // starting once more after a tree ran out (the last of them after a look back).
       for (std::size_t i = 1; i < exploration::kRestartReasonCount; ++i) {  // 0 is kNone
         const auto why = static_cast<exploration::RestartReason>(i);
         std::string key = "srt_restarts.";
@@ -359,6 +359,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
       out.emplace_back("srt_blocked_arrivals", e->planner()->blocked_arrivals());
       out.emplace_back("srt_frontiers_handed_up", e->planner()->frontiers_handed_up());
       out.emplace_back("srt_steer_pauses", e->planner()->steer_pauses());
+      out.emplace_back("srt_look_backs", e->planner()->look_backs());
     }
   }
   const Scheduler& s = stack_->scheduler();

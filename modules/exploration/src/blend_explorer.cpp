@@ -18,11 +18,7 @@ Status BlendExplorer::plan(const Pose2& pose, const LaserScan& scan, TimeUs now,
   const float dx = wp.x - pose.x, dy = wp.y - pose.y;
   const Eigen::Vector2f v_fr{params_.guidance.gain_fr * dx, params_.guidance.gain_fr * dy};
   status_.v_fr = v_fr;
-  // On top of the waypoint atan2 says nothing, and while the arrival step is worked on the
-  // waypoint is the one just reached, a few cm off in any direction: the heading command
-  // stays where it is (turning towards it would leave the laser facing anywhere when the
-  // next waypoint comes).
-  if (!planner_.busy() && dx * dx + dy * dy > 1e-4f) heading_target = std::atan2(dy, dx);
+  (void)planner_.heading_target(pose, heading_target);  // else the heading command stays
   const Eigen::Vector2f v = v_wf + v_fr;
   out.mode = GuidanceSetpoint::Mode::kVelocity;
   out.velocity_mps = {v.x(), v.y(), 0.0f};

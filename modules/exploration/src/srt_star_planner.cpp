@@ -4,7 +4,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <utility>
+
+#include "kestrel/core/angle.hpp"
 
 namespace kestrel::exploration {
 namespace {
@@ -13,6 +16,8 @@ constexpr float kProgressM = 0.05f;
 // Ancestors a frontier with no path from its node is offered to, nearest first: enough to
 // leave a doorway (the parent or grandparent in practice), and a bounded cost in one slice.
 constexpr int kHandUpLevels = 8;
+// kLookBack: the turn is done within this of the look-back heading.
+constexpr float kLookedBackRad = 0.15f;
 }  // namespace
 
 const char* to_string(PlannerMode m) {
@@ -23,6 +28,8 @@ const char* to_string(PlannerMode m) {
       return "forward";
     case PlannerMode::kBacktrack:
       return "backtrack";
+    case PlannerMode::kLookBack:
+      return "look_back";
     case PlannerMode::kFinished:
       return "finished";
   }
@@ -123,8 +130,23 @@ void SrtStarPlanner::reset() {
   restarts_ = 0;
   restarts_by_.fill(0);
   last_restart_ = RestartReason::kNone;
+  looked_back_ = false;
+  look_heading_ = 0;
+  look_backs_ = 0;
   step_ = Step::kNone;
   last_work_ = 0;
+}
+
+bool SrtStarPlanner::heading_target(const Pose2& pose, float& heading_rad) const {
+  if (busy()) return false;
+  if (mode_ == PlannerMode::kLookBack) {
+    heading_rad = look_heading_;
+    return true;
+  }
+  const float dx = waypoint_.x - pose.x, dy = waypoint_.y - pose.y;
+  if (dx * dx + dy * dy <= 1e-4f) return false;
+  heading_rad = std::atan2(dy, dx);
+  return true;
 }
 
 Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs now, bool& new_waypoint) {
@@ -157,10 +179,18 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     const bool blocked = dist < guidance_.blocked_arrival_distance_m &&
                          (now - closest_at_).seconds() > static_cast<double>(guidance_.blocked_time_s);
     const bool arrived = dist < radius || blocked;
-    if (blocked && dist >= radius && mode_ != PlannerMode::kFinished) ++blocked_arrivals_;
+    if (blocked && dist >= radius && mode_ != PlannerMode::kFinished && mode_ != PlannerMode::kLookBack)
+      ++blocked_arrivals_;
     const bool late = (now - waypoint_time_).seconds() > static_cast<double>(guidance_.waypoint_time_limit_s);
     if (mode_ == PlannerMode::kFinished) {
       // Stays on the root; nothing left to explore.
+    } else if (mode_ == PlannerMode::kLookBack) {
+      if (std::fabs(angle_diff(pose.theta, look_heading_)) < kLookedBackRad) {
+        restart_tree(RestartReason::kExhausted);
+        if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
+      } else if (late) {
+        mode_ = PlannerMode::kFinished;  // the turn never came: what was seen is all there is
+      }
     } else if (arrived && mode_ == PlannerMode::kBacktrack) {
       // Held off the node it was closing in on: closing in again would issue the same
       // waypoint for ever (and keep the time limit from running), so a vehicle whose commands
@@ -199,6 +229,7 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
 }
 
 void SrtStarPlanner::restart_tree(RestartReason why) {
+  if (why != RestartReason::kExhausted) looked_back_ = false;
   tree_.clear();
   aligning_ = false;
   straight_to_parent_ = false;
@@ -473,14 +504,28 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
     step_ = Step::kNone;
     return 1;
   }
-  // Section V's restarts erase the tree: a tree grown since knows only the rooms it has seen,
-  // and running out of frontiers says nothing of the rest of the building (gt-building, 30
-  // minutes, UTM-30LX: two of ten flights flew home from the north-east room with four rooms
-  // never entered). It starts once more from here; a tree that then runs out has seen all it
-  // could from where the vehicle was, and exploration is finished.
-  if (last_restart_ == RestartReason::kTimeout || last_restart_ == RestartReason::kTreeFull) {
+  // Running out of frontiers says less than it seems. Section V's restarts erase the tree: a
+  // tree grown since knows only the rooms it has seen (gt-building, 30 minutes, UTM-30LX: two
+  // of ten flights flew home from the north-east room with four rooms never entered). And the
+  // first tree drops a frontier it has no path to from the node that owns it (hand_up_or_drop:
+  // three of the 60 flights of the 30-seed sweep ran out with half the building never entered).
+  // So a tree that runs out starts once more from here. When that one runs out too, its root
+  // saw only what lay ahead of the vehicle (gt-building: back at the start facing the west
+  // wall, the unexplored east half behind it, a fresh tree had nothing to grow on), so the
+  // vehicle first turns to face the root scan's blind arc and one more tree grows from there.
+  // A tree that runs out after that has seen all it could from where the vehicle was: finished.
+  if (last_restart_ != RestartReason::kExhausted) {
     restart_tree(RestartReason::kExhausted);
     if (start_grow(job_pose_, job_scan_) == Status::kOk) return work::kTableEntry;
+  } else if (!looked_back_) {
+    looked_back_ = true;
+    ++look_backs_;
+    mode_ = PlannerMode::kLookBack;
+    look_heading_ = wrap_angle(node.heading_rad + std::numbers::pi_v<float>);
+    target_node_ = kNoNode;
+    set_waypoint({job_pose_.x, job_pose_.y}, now);
+    step_ = Step::kNone;
+    return 1;
   }
   mode_ = PlannerMode::kFinished;
   target_node_ = kNoNode;

@@ -15,6 +15,14 @@
 // in on the node (within d / 2). Exploration is finished when the root owns no frontier: the
 // waypoint stays on the root, so the vehicle returns to where it started.
 //
+// Running out is not trusted at once: a tree that runs out starts once more where the vehicle
+// is (section V's restarts leave trees that know only what they saw since, and the first tree
+// drops frontiers it has no path to), and a fresh tree that runs out at once first turns the
+// vehicle on the spot to face what the laser's blind arc hid (kLookBack: the heading is
+// turned by pi, the waypoint holds) and grows one more tree from the scan taken there. Only a
+// tree that then runs out too ends exploration; a turn not done within the time limit ends it
+// as well.
+//
 // With srt.prefer_unvisited the frontier is drawn at random among those of the current node that
 // lie where the vehicle has not flown (VisitedGrid, kept across section V's restarts), and
 // among all of them only when none does; off, among all of them, as in paper 002. A forward
@@ -65,12 +73,13 @@ enum class PlannerMode : uint8_t {
   kIdle,       // no tree yet: the next update starts exploration
   kForward,    // heading for a new waypoint drawn in a frontier sector
   kBacktrack,  // heading back to the parent node
+  kLookBack,   // turning on the spot to face the laser's blind arc before a last fresh tree
   kFinished,   // the root owns no frontier: waypoint is the root
 };
 const char* to_string(PlannerMode m);
 
-// kExhausted: a tree grown after a kTimeout or kTreeFull restart ran out of frontiers; it knew
-// only what it had seen since, so exploration starts once more from where the vehicle is.
+// kExhausted: a tree ran out of frontiers, and exploration started once more from where the
+// vehicle is (backtrack_or_finish says when).
 enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull, kExhausted };
 inline constexpr std::size_t kRestartReasonCount = static_cast<std::size_t>(RestartReason::kExhausted) + 1;
 const char* to_string(RestartReason r);
@@ -106,6 +115,13 @@ class SrtStarPlanner {
   bool busy() const { return step_ != Step::kNone; }  // an arrival step is being worked on
   uint32_t last_work() const { return last_work_; }    // work units the last update() used
   Point2 waypoint() const { return waypoint_; }
+  // The heading the vehicle at `pose` should turn to: towards the waypoint, or the look-back
+  // heading. False when it should keep its heading command: on top of the waypoint (atan2 says
+  // nothing) and while an arrival step is worked on (the waypoint is the one just reached, a
+  // few cm off in any direction: turning towards it would leave the laser facing anywhere
+  // when the next waypoint comes).
+  bool heading_target(const Pose2& pose, float& heading_rad) const;
+  uint32_t look_backs() const { return look_backs_; }  // turns to face the blind arc
   uint16_t current_node() const { return current_; }     // node the vehicle is leaving or at
   uint16_t target_node() const { return target_node_; }  // node of a backtrack, else kNoNode
   bool aligning() const { return aligning_; }
@@ -182,6 +198,9 @@ class SrtStarPlanner {
   uint32_t restarts_ = 0;
   std::array<uint32_t, kRestartReasonCount> restarts_by_{};  // kNone's entry stays 0
   RestartReason last_restart_ = RestartReason::kNone;
+  bool looked_back_ = false;  // since the last kTimeout or kTreeFull restart (or the start)
+  float look_heading_ = 0;    // kLookBack: the heading to turn to
+  uint32_t look_backs_ = 0;
 
   // The arrival step in progress.
   Step step_ = Step::kNone;
