@@ -2,7 +2,9 @@
 // draw that steers a fresh tree towards it (draw_toward_unflown, SrtParams::steer_unflown).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <memory>
 
@@ -64,10 +66,33 @@ TEST(UnflownBearings, CountsTheUnflownCellsInsideTheExtentByBearing) {
   EXPECT_EQ(b.score(3.0f), b.score(3.0f - 2.0f * static_cast<float>(M_PI)));
 }
 
+// A flown square but for a 3 x 3 patch of cells centred `dist` cells north of (0, 0) (marks
+// are 3 x 3, on integer positions: cell centres, the first mark fixes the grid).
+VisitedGrid flown_but_a_patch(int dist) {
+  VisitedGrid g;
+  for (int y = -2; y <= 18; ++y)
+    for (int x = -10; x <= 10; ++x)
+      if (std::max(std::abs(x), std::abs(y - dist)) > 2) g.mark({static_cast<float>(x), static_cast<float>(y)});
+  return g;
+}
+
+// The same nine unflown cells weigh about five times as much 3 m away as 12 m away: a door into
+// an unflown room beside the node outweighs a corridor's far end.
+TEST(UnflownBearings, NearerUnflownCellsWeighMore) {
+  UnflownBearings b;
+  b.count(flown_but_a_patch(3), {0, 0});
+  const uint32_t near = b.score(kNorth);
+  EXPECT_EQ(b.score(kWest), 0u);
+  b.count(flown_but_a_patch(12), {0, 0});
+  const uint32_t far = b.score(kNorth);
+  EXPECT_GT(far, 0u);
+  EXPECT_GE(near, 4 * far);
+}
+
 // Against a count by angle, cell by cell, in a scene with no symmetry: a bearing on a multiple
 // of 10 degrees scores the unflown cells within +-35 degrees of it (those on the cone's edges
-// either way).
-TEST(UnflownBearings, AScoreIsTheUnflownCellsWithin35DegreesUpTo16Cells) {
+// either way), each weighing 16 / its distance in cells, rounded.
+TEST(UnflownBearings, AScoreIsTheWeightedUnflownCellsWithin35DegreesUpTo16Cells) {
   VisitedGrid g;
   for (float x = 0.0f; x <= 12.0f; x += 0.5f) g.mark({x, 0.3f * x});
   g.mark({1.0f, 9.0f});
@@ -85,8 +110,9 @@ TEST(UnflownBearings, AScoreIsTheUnflownCellsWithin35DegreesUpTo16Cells) {
         if ((dx == 0 && dy == 0) || dx * dx + dy * dy > 256) continue;
         if (!g.in_extent(cx + dx, cy + dy) || g.visited_cell(cx + dx, cy + dy)) continue;
         const double off = std::fabs(std::remainder(std::atan2(dy, dx) - bearing, 2.0 * M_PI)) * 180.0 / M_PI;
-        inside += off < 34.99 ? 1 : 0;
-        edge += off >= 34.99 && off <= 35.01 ? 1 : 0;
+        const auto weight = static_cast<uint32_t>(std::lround(16.0 / std::hypot(dx, dy)));
+        inside += off < 34.99 ? weight : 0;
+        edge += off >= 34.99 && off <= 35.01 ? weight : 0;
       }
     }
     SCOPED_TRACE(::testing::Message() << "bearing " << k * 10 << " degrees");

@@ -27,6 +27,8 @@ UnflownBearings::UnflownBearings() {
       const bool inside = dx * dx + dy * dy <= kReachCells * kReachCells && (dx != 0 || dy != 0);
       bin_of_offset_[i] = inside ? static_cast<uint8_t>(bin_of(std::atan2(static_cast<float>(dy), static_cast<float>(dx))))
                                  : kBeyondReach;
+      const float distance = std::hypot(static_cast<float>(dx), static_cast<float>(dy));
+      weight_of_offset_[i] = inside ? static_cast<uint8_t>(std::lround(static_cast<float>(kReachCells) / distance)) : 0;
     }
   }
 }
@@ -37,10 +39,12 @@ uint32_t UnflownBearings::count(const VisitedGrid& grid, Point2 from) {
   if (!grid.cell_of(from, cx, cy)) return 1;
   for (int dy = -kReachCells; dy <= kReachCells; ++dy) {
     for (int dx = -kReachCells; dx <= kReachCells; ++dx) {
-      const uint8_t bin = bin_of_offset_[static_cast<std::size_t>((dy + kReachCells) * kSide + (dx + kReachCells))];
+      const std::size_t offset = static_cast<std::size_t>((dy + kReachCells) * kSide + (dx + kReachCells));
+      const uint8_t bin = bin_of_offset_[offset];
       if (bin == kBeyondReach) continue;
       const int ix = cx + dx, iy = cy + dy;
-      if (grid.in_extent(ix, iy) && !grid.visited_cell(ix, iy)) ++cells_[bin];
+      if (grid.in_extent(ix, iy) && !grid.visited_cell(ix, iy))
+        cells_[bin] = static_cast<uint16_t>(cells_[bin] + weight_of_offset_[offset]);
     }
   }
   return static_cast<uint32_t>(kSide * kSide / work::kGridCells);

@@ -13,8 +13,16 @@
 // outside the walls than rooms), by bearing, in kBins bins. A box: in an L- or U-shaped
 // building it takes in space outside the walls too, which then draws the steering.
 //
-// No trigonometry per cell: each cell offset's bin is tabled once, at construction. 1.2 KB;
-// a count is 37.1 k instructions on the Verdex (exploration/unflown_count).
+// Each cell weighs kReachCells / its distance in cells, rounded (16 beside the node, 1 at the
+// reach). Counted alike, a corridor's cone towards a far unflown end held more cells than a
+// door into an unflown room beside the node, and a fresh tree at gt-building's start went east
+// and left the south-west room for ever (missed on 10 of 30 steered UTM-30LX flights); the
+// URG-04LX's steered flights crossed the corridor again and again (every room on 4 of 30).
+// Weighted: 18 and 18 of 30 (README, Exploration).
+//
+// No trigonometry per cell: each cell offset's bin and weight are tabled once, at
+// construction. 2.2 KB; a count is 37.1 k instructions on the Verdex (exploration/unflown_count,
+// measured before the weights).
 #include <array>
 #include <cstdint>
 
@@ -35,14 +43,15 @@ class UnflownBearings {
 
   // Counts the unflown cells around `from` by bearing. Returns the work units it cost.
   uint32_t count(const VisitedGrid& grid, Point2 from);
-  // Unflown cells within +-kHalfConeBins bins of `bearing_rad` (world frame) at the last
-  // count; 0 for a non-finite bearing.
+  // Weighted unflown cells within +-kHalfConeBins bins of `bearing_rad` (world frame) at the
+  // last count; 0 for a non-finite bearing.
   uint32_t score(float bearing_rad) const;
-  uint32_t total() const;  // every unflown cell counted
+  uint32_t total() const;  // every unflown cell counted, weighted
 
  private:
   static constexpr int kSide = 2 * kReachCells + 1;
   std::array<uint8_t, kSide * kSide> bin_of_offset_{};  // kBeyondReach outside the disc
+  std::array<uint8_t, kSide * kSide> weight_of_offset_{};  // kReachCells / distance, rounded
   std::array<uint16_t, kBins> cells_{};
 };
 
