@@ -18,7 +18,7 @@
 // door into an unflown room beside the node, and a fresh tree at gt-building's start went east
 // and left the south-west room for ever (missed on 10 of 30 steered UTM-30LX flights); the
 // URG-04LX's steered flights crossed the corridor again and again (every room on 4 of 30).
-// Weighted: 18 and 18 of 30 (README, Exploration).
+// Weighted: 18 and 21 of 30 (main at 9be8eab; README, Exploration).
 //
 // No trigonometry per cell: each cell offset's bin and weight are tabled once, at
 // construction. 2.2 KB; a count is 37.1 k instructions on the Verdex (exploration/unflown_count,
