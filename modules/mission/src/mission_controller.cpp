@@ -35,7 +35,7 @@ namespace {
 bool positive_finite(float v) { return std::isfinite(v) && v > 0; }
 // Flying home: nearer than this to the carrot its bearing is noise, so the heading holds.
 constexpr float kReturnFacingMinM = 0.1f;
-// Flying home: speed per metre to the carrot when nearer than one second of travel.
+// Flying home and landing: speed per metre to the target when nearer than one second of travel.
 constexpr float kReturnGainPerS = 1.0f;
 // Flying home: coming this much nearer the carrot counts as progress.
 constexpr float kReturnProgressM = 0.1f;
@@ -238,12 +238,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       GuidanceSetpoint s = hold(now, {nav.position_m.x(), nav.position_m.y(), alt}, hold_heading_);
       s.mode = GuidanceSetpoint::Mode::kVelocity;
       s.velocity_mps.setZero();
-      if (dist > 1e-3f) {
-        // Full speed until one second from the carrot, then in proportion (home is arrived at,
-        // not overflown).
-        const float speed = std::min(params_.return_speed_mps, dist * kReturnGainPerS);
-        s.velocity_mps.head<2>() = to_target * (speed / dist);
-      }
+      s.velocity_mps.head<2>() = homing_velocity(to_target);
       return s;
     }
     case Phase::kLand: {
@@ -255,14 +250,9 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       // After exploring, home is a point of the estimate's drifted frame: held as a position it
       // can lie against a wall (a landing drifted 1.4 m touched one). Velocity set-points
       // towards it let the composition bound them against the scan, as on the way home.
-      const Eigen::Vector2f to_point = (hold_point_ - nav.position_m).head<2>();
       s.mode = GuidanceSetpoint::Mode::kVelocity;
       s.velocity_mps.setZero();
-      if (estimate_ok) {
-        const float dist = to_point.norm();
-        const float speed = std::min(params_.return_speed_mps, dist * kReturnGainPerS);
-        if (dist > 1e-3f) s.velocity_mps.head<2>() = to_point * (speed / dist);
-      }
+      if (estimate_ok) s.velocity_mps.head<2>() = homing_velocity((hold_point_ - nav.position_m).head<2>());
       return s;
     }
     case Phase::kFailsafeLand: {
@@ -284,6 +274,13 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       return hold(now, {hold_point_.x(), hold_point_.y(), 0}, hold_heading_);
   }
   return hold(now, hold_point_, hold_heading_);
+}
+
+Eigen::Vector2f MissionController::homing_velocity(const Eigen::Vector2f& offset) const {
+  const float dist = offset.norm();
+  if (!(dist > 1e-3f)) return Eigen::Vector2f::Zero();
+  const float speed = std::min(params_.return_speed_mps, dist * kReturnGainPerS);
+  return offset * (speed / dist);
 }
 
 }  // namespace kestrel::mission

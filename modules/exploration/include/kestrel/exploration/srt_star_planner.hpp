@@ -17,11 +17,11 @@
 //
 // Running out is not trusted at once: a tree that runs out starts once more where the vehicle
 // is (section V's restarts leave trees that know only what they saw since, and the first tree
-// drops frontiers it has no path to), and a fresh tree that runs out at once first turns the
-// vehicle on the spot to face what the laser's blind arc hid (kLookBack: the heading is
-// turned by pi, the waypoint holds) and grows one more tree from the scan taken there. Only a
-// tree that then runs out too ends exploration; a turn not done within the time limit ends it
-// as well.
+// drops frontiers it has no path to). When that fresh tree runs out too, the vehicle first
+// turns on the spot to face what its root scan's blind arc hid (kLookBack: the heading command
+// is the root's heading plus pi, the waypoint holds) and grows one more tree from the scan
+// taken there. Only a tree that then runs out too ends exploration; a turn not done within the
+// waypoint time limit ends it as well.
 //
 // With srt.prefer_unvisited the frontier is drawn at random among those of the current node that
 // lie where the vehicle has not flown (VisitedGrid, kept across section V's restarts), and

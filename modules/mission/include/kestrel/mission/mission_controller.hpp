@@ -88,6 +88,9 @@ class MissionController {
   void enter(Phase p, TimeUs now);
   bool arrived(const NavState& nav, const Eigen::Vector3f& target) const;
   GuidanceSetpoint hold(TimeUs now, const Eigen::Vector3f& p, float heading) const;
+  // Flying home and landing there: the horizontal velocity towards a point `offset` away, at
+  // the return speed until one second from it, then in proportion (arrived at, not overflown).
+  Eigen::Vector2f homing_velocity(const Eigen::Vector2f& offset) const;
 
   MissionKind kind_ = MissionKind::kHover;
   MissionParams params_;
