@@ -246,10 +246,12 @@ TEST(KinematicClosedLoop, WallFollowingAloneLeavesRoomsUnexplored) {
 
 // SRT alone has nothing between its straight lines and the walls but the clearance it checked
 // when it drew them: a backtrack from within d / 2 of a node flies the tree edge back to the
-// parent unchecked, and the edge was flown forward from up to d beside the parent. On seed 1
-// (336 s) such a backtrack grazes the partition's end, 0.13 m from the vehicle's centre. So one
-// flight may touch (not the blend's, which the approach limiter guards), and none by more
-// than half the vehicle's 0.2 m radius.
+// parent unchecked, and the edge was flown forward from up to d beside the parent. Before the
+// planner closed in on a node to choose again (close_in_to_choose), seed 1 grazed the
+// partition's end so at 336 s, 0.13 m from the vehicle's centre; since, no flight of seeds 1-10
+// comes nearer than 0.21 m, but the unchecked edge remains. So one flight may touch (not the
+// blend's, which the approach limiter guards), and none by more than half the vehicle's 0.2 m
+// radius.
 TEST(KinematicClosedLoop, SrtAloneExploresWithPositionSetpoints) {
   const Scale sc = scale();
   std::size_t explored = 0, touched = 0;

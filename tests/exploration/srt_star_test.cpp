@@ -444,6 +444,65 @@ TEST(SrtStarPlanner, HeldOffItsNodeAGuardedBacktrackLeavesForTheParent) {
   }
 }
 
+// A 1.2 m door in a wall along x = 2, with a hall on each side; the root lies in the door.
+SegmentWorld door_between_halls() {
+  SegmentWorld w;
+  w.add(2, 0.6, 2, 4);
+  w.add(2, -4, 2, -0.6);
+  w.add_box(-3, -4, 8, 4);
+  return w;
+}
+
+// Back at its node after a backtrack, the vehicle is up to d beside it. 0.28 m beside the
+// root, which lies in a door, it is within the clearance of a jamb, so every path from there is
+// blocked, while from the node they are clear. It closes in on the node and chooses again
+// there instead of dropping the frontiers; held off the node, it chooses as it is, once.
+TEST(SrtStarPlanner, BackBesideItsNodeInADoorItClosesInBeforeDroppingFrontiers) {
+  const SegmentWorld world = door_between_halls();
+  const GuidanceParams g;
+  const Pose2 root{2.0f, 0.0f, 0.0f};
+  const Pose2 beside{1.95f, 0.28f, 0.0f};  // 0.324 m from the jamb at (2, 0.6)
+  for (const bool held_off : {false, true}) {
+    SCOPED_TRACE(::testing::Message() << "held off " << held_off);
+    auto planner = std::make_unique<SrtStarPlanner>();
+    ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
+    bool fresh = false;
+    ASSERT_EQ(planner->update(root, world.scan(kUrg, root.x, root.y, root.theta), TimeUs{}, fresh), Status::kOk);
+    ASSERT_EQ(planner->mode(), PlannerMode::kForward);
+    // The child is a dead end: back to the root.
+    const Point2 child = planner->waypoint();
+    ASSERT_EQ(planner->update({child.x, child.y, 0}, uniform_scan(kUrg, 1000), TimeUs::from_s(1.0), fresh),
+              Status::kOk);
+    ASSERT_EQ(planner->mode(), PlannerMode::kBacktrack);
+    ASSERT_EQ(planner->target_node(), 0);
+    ASSERT_GT(planner->tree().frontier_count_of(0), 0u);
+    const std::size_t root_frontiers = planner->tree().frontier_count_of(0);
+    ASSERT_EQ(planner->update(beside, world.scan(kUrg, beside.x, beside.y, 0), TimeUs::from_s(2.0), fresh),
+              Status::kOk);
+    ASSERT_TRUE(fresh);
+    EXPECT_EQ(planner->mode(), PlannerMode::kBacktrack);
+    EXPECT_EQ(planner->target_node(), 0);
+    EXPECT_FLOAT_EQ(planner->waypoint().x, root.x);
+    EXPECT_FLOAT_EQ(planner->waypoint().y, root.y);
+    EXPECT_EQ(planner->tree().frontier_count_of(0), root_frontiers);  // none dropped
+    if (!held_off) {
+      const Pose2 near{2.0f, 0.1f, 0.0f};
+      ASSERT_EQ(planner->update(near, world.scan(kUrg, near.x, near.y, 0), TimeUs::from_s(3.0), fresh), Status::kOk);
+      ASSERT_TRUE(fresh);
+      EXPECT_EQ(planner->mode(), PlannerMode::kForward);
+      EXPECT_EQ(planner->restarts(), 0u);
+    } else {
+      // Held where it was for longer than blocked_time_s: it chooses from there, and with every
+      // path blocked the root's frontiers go and the tree runs out (no second closing in).
+      const LaserScan scan = world.scan(kUrg, beside.x, beside.y, 0);
+      ASSERT_EQ(planner->update(beside, scan, TimeUs::from_s(2.5), fresh), Status::kOk);
+      ASSERT_EQ(planner->update(beside, scan, TimeUs::from_s(3.0 + g.blocked_time_s), fresh), Status::kOk);
+      EXPECT_EQ(planner->blocked_arrivals(), 1u);
+      EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 1u);
+    }
+  }
+}
+
 TEST(SrtStarPlanner, FullTreeRestartsExploration) {
   auto planner = std::make_unique<SrtStarPlanner>();
   ASSERT_EQ(planner->configure({}, {}), Status::kOk);

@@ -120,6 +120,7 @@ void SrtStarPlanner::reset() {
   target_node_ = kNoNode;
   aligning_ = false;
   straight_to_parent_ = false;
+  closed_in_on_ = kNoNode;
   pursuing_handed_up_ = false;
   grown_by_handed_up_.reset();  // node ids start again at 0
   drawn_steered_ = pursued_steered_ = steer_paused_ = false;
@@ -233,6 +234,7 @@ void SrtStarPlanner::restart_tree(RestartReason why) {
   tree_.clear();
   aligning_ = false;
   straight_to_parent_ = false;
+  closed_in_on_ = kNoNode;
   pursuing_handed_up_ = false;
   grown_by_handed_up_.reset();
   mode_ = PlannerMode::kIdle;
@@ -288,7 +290,7 @@ void SrtStarPlanner::work_on_arrival(TimeUs now) {
         used += pick_frontier(now);
         break;
       case Step::kDraw:
-        used += draw_candidate();
+        used += draw_candidate(now);
         break;
       case Step::kPath:
         used += check_path(budget - used, now);
@@ -357,6 +359,7 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
     }
   }
   candidate_count_ = n;
+  path_blocked_ = false;
   step_ = Step::kDraw;
   // Choosing among the unvisited frontiers is two more passes over the list; steering, three
   // passes, each with a bearing (atan2) for every frontier of the node (at most).
@@ -365,8 +368,9 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   return 1 + steering + passes * static_cast<uint32_t>(tree_.frontiers().size() / work::kFrontierScan);
 }
 
-uint32_t SrtStarPlanner::draw_candidate() {
+uint32_t SrtStarPlanner::draw_candidate(TimeUs now) {
   if (candidate_count_ == 0) {
+    if (path_blocked_ && close_in_to_choose(now)) return 1;
     // No valid waypoint for this frontier from this node: handed up or dropped; the next one
     // is tried.
     --live_;
@@ -392,7 +396,10 @@ uint32_t SrtStarPlanner::draw_candidate() {
   const Point2 p{node.position.x + dist * std::cos(a), node.position.y + dist * std::sin(a)};
   // An operator keep-out is as good as a wall: the next candidate ray is tried.
   const uint32_t keep_out_work = srt_.keep_out_count > 0 ? work::kKeepOutTest : 0;
-  if (crosses_keep_out({job_pose_.x, job_pose_.y}, p)) return work::kTableEntry + keep_out_work;
+  if (crosses_keep_out({job_pose_.x, job_pose_.y}, p)) {
+    path_blocked_ = true;
+    return work::kTableEntry + keep_out_work;
+  }
   return work::kTableEntry + keep_out_work + start_path(p, false);
 }
 
@@ -613,12 +620,33 @@ uint32_t SrtStarPlanner::check_path(uint32_t budget, TimeUs now) {
     pursuing_handed_up_ = f.handed_up;
     if (++f.attempts >= srt_.max_attempts_per_frontier) tree_.remove_frontier(frontier_);
     mode_ = PlannerMode::kForward;
+    closed_in_on_ = kNoNode;
     set_waypoint(path_.target, now);
     step_ = Step::kNone;
   } else {
+    path_blocked_ = true;
     step_ = Step::kDraw;  // the next candidate ray of this frontier
   }
   return used + 1;
+}
+
+bool SrtStarPlanner::close_in_to_choose(TimeUs now) {
+  // Back at a node, the vehicle is up to d beside it, and beside a door jamb every path from
+  // there through the door can pass too close while the same paths from the node are clear
+  // (kinematic building, steered blend, seed 4: back in the 1.2 m gap 0.28 m off its node,
+  // the east hall's five frontiers were all dropped, and the trees ran out in the start room).
+  // Closing in to d/2 once per visit keeps them; a vehicle held off the node chooses as it is.
+  const Point2 node = tree_.nodes()[current_].position;
+  const float ox = node.x - job_pose_.x, oy = node.y - job_pose_.y;
+  const float half_d = 0.5f * guidance_.arrival_distance_m;
+  if (closed_in_on_ == current_ || ox * ox + oy * oy <= half_d * half_d) return false;
+  closed_in_on_ = current_;
+  mode_ = PlannerMode::kBacktrack;
+  aligning_ = true;
+  target_node_ = current_;
+  set_waypoint(node, now);
+  step_ = Step::kNone;
+  return true;
 }
 
 void SrtStarPlanner::set_waypoint(Point2 p, TimeUs now) {

@@ -151,7 +151,11 @@ class SrtStarPlanner {
   void work_on_arrival(TimeUs now);
   uint32_t begin_node();
   uint32_t pick_frontier(TimeUs now);
-  uint32_t draw_candidate();
+  uint32_t draw_candidate(TimeUs now);
+  // The frontier's candidate paths were blocked from where the vehicle is, beside its node
+  // after a backtrack: closes in on the node to choose again from there. False when the vehicle
+  // is already near the node or has closed in on it once for this choice.
+  bool close_in_to_choose(TimeUs now);
   // Frontier i has no path from its node: it moves to the nearest ancestor that can take it,
   // or is dropped. Returns the work units spent.
   uint32_t hand_up_or_drop(std::size_t i);
@@ -186,6 +190,8 @@ class SrtStarPlanner {
   uint16_t target_node_ = kNoNode;
   bool aligning_ = false;  // backtracking: closing in on the node before leaving for its parent
   bool straight_to_parent_ = false;  // the closing in was held off: leave for the parent as is
+  bool path_blocked_ = false;        // a candidate path of the frontier being tried was blocked
+  uint16_t closed_in_on_ = kNoNode;  // closed in on this node to choose again (once per visit)
   bool pursuing_handed_up_ = false;          // the forward waypoint serves a handed-up frontier
   std::bitset<kMaxNodes> grown_by_handed_up_;  // nodes reached so: their frontiers stay theirs
   bool guarded_ = false;
