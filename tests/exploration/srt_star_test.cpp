@@ -455,17 +455,19 @@ SegmentWorld door_between_halls() {
 
 // Back at its node after a backtrack, the vehicle is up to d beside it. 0.28 m beside the
 // root, which lies in a door, it is within the clearance of a jamb, so every path from there is
-// blocked, while from the node they are clear. It closes in on the node and chooses again
-// there instead of dropping the frontiers; held off the node, it chooses as it is, once.
+// blocked, while from the node they are clear. Unguarded (SRT alone), it closes in on the node
+// and chooses again there instead of dropping the frontiers; held off the node, it chooses as
+// it is, once. Guarded (the blend) it chooses as it is at once: the frontiers go.
 TEST(SrtStarPlanner, BackBesideItsNodeInADoorItClosesInBeforeDroppingFrontiers) {
   const SegmentWorld world = door_between_halls();
   const GuidanceParams g;
   const Pose2 root{2.0f, 0.0f, 0.0f};
   const Pose2 beside{1.95f, 0.28f, 0.0f};  // 0.324 m from the jamb at (2, 0.6)
-  for (const bool held_off : {false, true}) {
-    SCOPED_TRACE(::testing::Message() << "held off " << held_off);
+  for (const int variant : {0, 1, 2}) {
+    const bool held_off = variant == 1, guarded = variant == 2;
+    SCOPED_TRACE(::testing::Message() << "held off " << held_off << ", guarded " << guarded);
     auto planner = std::make_unique<SrtStarPlanner>();
-    ASSERT_EQ(planner->configure(one_shot(), g), Status::kOk);
+    ASSERT_EQ(planner->configure(one_shot(), g, guarded), Status::kOk);
     bool fresh = false;
     ASSERT_EQ(planner->update(root, world.scan(kUrg, root.x, root.y, root.theta), TimeUs{}, fresh), Status::kOk);
     ASSERT_EQ(planner->mode(), PlannerMode::kForward);
@@ -479,6 +481,11 @@ TEST(SrtStarPlanner, BackBesideItsNodeInADoorItClosesInBeforeDroppingFrontiers) 
     const std::size_t root_frontiers = planner->tree().frontier_count_of(0);
     ASSERT_EQ(planner->update(beside, world.scan(kUrg, beside.x, beside.y, 0), TimeUs::from_s(2.0), fresh),
               Status::kOk);
+    if (guarded) {
+      EXPECT_EQ(planner->tree().frontier_count_of(0), 0u);
+      EXPECT_EQ(planner->restarts(RestartReason::kExhausted), 1u);
+      continue;
+    }
     ASSERT_TRUE(fresh);
     EXPECT_EQ(planner->mode(), PlannerMode::kBacktrack);
     EXPECT_EQ(planner->target_node(), 0);

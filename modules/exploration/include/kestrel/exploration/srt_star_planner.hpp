@@ -154,7 +154,7 @@ class SrtStarPlanner {
   uint32_t draw_candidate(TimeUs now);
   // The frontier's candidate paths were blocked from where the vehicle is, beside its node
   // after a backtrack: closes in on the node to choose again from there. False when the vehicle
-  // is already near the node or has closed in on it once for this choice.
+  // is guarded (the blend), already near the node, or has closed in on it once this visit.
   bool close_in_to_choose(TimeUs now);
   // Frontier i has no path from its node: it moves to the nearest ancestor that can take it,
   // or is dropped. Returns the work units spent.
