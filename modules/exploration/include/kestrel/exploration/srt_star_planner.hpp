@@ -10,9 +10,12 @@
 // all of the sector's rays are blocked for the vehicle, of a sector up to ray_search_sectors
 // away) at a random fraction of the sector radius within the ray's clear distance, and only if
 // the straight path from the vehicle keeps the clearance from the scan just taken (SRT's
-// Valid()). Otherwise the parent is the next waypoint (previousWaypoint, backtracking); if the
-// vehicle, up to d beside the node, has no clear straight path to the parent, it first closes
-// in on the node (within d / 2). Exploration is finished when the root owns no frontier: the
+// Valid()). Unguarded (SRT alone), a vehicle back up to d beside its node whose every path
+// towards a frontier is blocked first closes in on the node (within d / 2, once per visit) and
+// chooses again, rather than dropping the frontier. Otherwise the parent is the next waypoint
+// (previousWaypoint, backtracking); if the vehicle, up to d beside the node, has no clear
+// straight path to the parent, it first closes in on the node (within d / 2). Exploration is
+// finished when the root owns no frontier: the
 // waypoint stays on the root, so the vehicle returns to where it started.
 //
 // Running out is not trusted at once: a tree that runs out starts once more where the vehicle
