@@ -501,10 +501,8 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
   if (node.parent != kNoNode) {
     // The tree edge is safe, but the vehicle may be up to d beside the node: if the straight
     // path from where it is to the parent is not clear, it first closes in on the node.
-    const float ox = node.position.x - job_pose_.x, oy = node.position.y - job_pose_.y;
-    const float half_d = 0.5f * guidance_.arrival_distance_m;
     const Point2 parent = tree_.nodes()[node.parent].position;
-    if (ox * ox + oy * oy > half_d * half_d && !straight_to_parent_) return start_path(parent, true);
+    if (off_node(node.position) && !straight_to_parent_) return start_path(parent, true);
     mode_ = PlannerMode::kBacktrack;
     target_node_ = node.parent;
     set_waypoint(parent, now);
@@ -630,6 +628,12 @@ uint32_t SrtStarPlanner::check_path(uint32_t budget, TimeUs now) {
   return used + 1;
 }
 
+bool SrtStarPlanner::off_node(Point2 node) const {
+  const float ox = node.x - job_pose_.x, oy = node.y - job_pose_.y;
+  const float half_d = 0.5f * guidance_.arrival_distance_m;
+  return ox * ox + oy * oy > half_d * half_d;
+}
+
 bool SrtStarPlanner::close_in_to_choose(TimeUs now) {
   // Back at a node, the vehicle is up to d beside it, and beside a door jamb every path from
   // there through the door can pass too close while the same paths from the node are clear
@@ -640,9 +644,7 @@ bool SrtStarPlanner::close_in_to_choose(TimeUs now) {
   // in kestrel-sim it gained nothing (gt-building, 30 minutes: every room on 14 of 30 UTM-30LX
   // flights as without, on 12 of 60 URG-04LX flights against 17; README, Exploration).
   const Point2 node = tree_.nodes()[current_].position;
-  const float ox = node.x - job_pose_.x, oy = node.y - job_pose_.y;
-  const float half_d = 0.5f * guidance_.arrival_distance_m;
-  if (guarded_ || closed_in_on_ == current_ || ox * ox + oy * oy <= half_d * half_d) return false;
+  if (guarded_ || closed_in_on_ == current_ || !off_node(node)) return false;
   closed_in_on_ = current_;
   mode_ = PlannerMode::kBacktrack;
   aligning_ = true;

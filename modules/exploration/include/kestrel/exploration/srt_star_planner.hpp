@@ -159,6 +159,8 @@ class SrtStarPlanner {
   // after a backtrack: closes in on the node to choose again from there. False when the vehicle
   // is guarded (the blend), already near the node, or has closed in on it once this visit.
   bool close_in_to_choose(TimeUs now);
+  // The arrival pose is more than d / 2 from `node`: worth closing in on before leaving it.
+  bool off_node(Point2 node) const;
   // Frontier i has no path from its node: it moves to the nearest ancestor that can take it,
   // or is dropped. Returns the work units spent.
   uint32_t hand_up_or_drop(std::size_t i);
