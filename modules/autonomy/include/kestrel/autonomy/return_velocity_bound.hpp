@@ -12,6 +12,10 @@
 // stands (the limiter has nothing new to say, and re-running it on the same returns is work
 // for nothing). Without a recent scan nothing bounds the flight, so the vehicle holds.
 //
+// Flown through the whole stack: ExploreClosedLoop.LandsHeldOffAWallItTookOffBeside
+// (exploration_sim_tests) takes off inside the limiter's stop distance of a wall and must land
+// outside it.
+//
 // No heap, no exceptions: the stored velocity is the only state.
 #include <cstdint>
 
