@@ -178,11 +178,12 @@ constexpr Pose2 kEastEnd{12.0f, 0, kNorth};  // facing a wall: both ends at +-90
 
 // A planner that flew the corridor west to east without reaching its waypoint (the outline
 // touched first), and whose time limit has just erased the tree at the east end.
-std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(bool steer, uint32_t seed) {
+std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(bool steer, uint32_t seed, bool from_root_only = false) {
   auto planner = std::make_unique<SrtStarPlanner>();
   SrtParams srt;
   srt.arrival_work_per_cycle = 0;
   srt.steer_unflown = steer;
+  srt.steer_from_root_only = from_root_only;
   srt.seed = seed;
   GuidanceParams g;
   g.waypoint_time_limit_s = 30.0f;
@@ -203,43 +204,80 @@ std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(bool steer, uint32_t s
   return planner;
 }
 
-// The vehicle arrives at the fresh tree's first waypoint, near the corridor's east end. Where
-// the new node owns frontiers both ways (a node east of the root has its west ones inside the
-// root's safe region), the next waypoint, steered, is west, towards the unflown rooms, on
-// every seed; unsteered, either way.
-TEST(SrtStarPlanner, SteeredTheNextWaypointHeadsForTheUnflownSideOfTheBuilding) {
+// Over seeds 1-40, the vehicle arrives at the fresh tree's first waypoint, near the corridor's
+// east end: how many of the new nodes own frontiers both ways (a node east of the root has its
+// west ones inside the root's safe region), and how many of those drew their next waypoint west.
+struct NextWaypoints {
+  int both_ways = 0;
+  int west = 0;
+};
+
+NextWaypoints next_waypoints_at_the_east_end(bool steer, bool from_root_only) {
   const SegmentWorld corridor = long_corridor();
   const LaserModel urg = LaserModel::urg04lx();
-  for (const bool steer : {true, false}) {
-    int both_ways = 0, west = 0;
-    for (uint32_t seed = 1; seed <= 40; ++seed) {
-      const auto planner = restarted_at_the_east_end(steer, seed);
-      const Point2 w = planner->waypoint();
-      bool fresh = false;
-      ASSERT_EQ(planner->update({w.x, w.y, kNorth}, corridor.scan(urg, w.x, w.y, kNorth), TimeUs{32000000}, fresh),
-                Status::kOk);
-      ASSERT_TRUE(fresh);
-      ASSERT_EQ(planner->mode(), PlannerMode::kForward);
-      EXPECT_FALSE(planner->steer_paused());
-      bool has_west = false, has_east = false;
-      for (const Frontier& f : planner->tree().frontiers()) {
-        if (f.node != planner->current_node()) continue;
-        has_west |= f.position.x < w.x;
-        has_east |= f.position.x > w.x;
-      }
-      if (!has_west || !has_east) continue;
-      ++both_ways;
-      west += planner->waypoint().x < w.x ? 1 : 0;
-    }
-    std::printf("%s: %d of %d nodes with frontiers both ways went west\n", steer ? "steered" : "unsteered", west, both_ways);
-    EXPECT_GE(both_ways, 8);
+  NextWaypoints out;
+  for (uint32_t seed = 1; seed <= 40; ++seed) {
+    const auto planner = restarted_at_the_east_end(steer, seed, from_root_only);
+    const uint32_t steered = planner->steered_draws();
     if (steer) {
-      EXPECT_EQ(west, both_ways);
-    } else {
-      EXPECT_GT(west, 0);
-      EXPECT_LT(west, both_ways);
+      EXPECT_GE(steered, 1u) << "seed " << seed;  // the first tree's root, at least
     }
+    const Point2 w = planner->waypoint();
+    bool fresh = false;
+    EXPECT_EQ(planner->update({w.x, w.y, kNorth}, corridor.scan(urg, w.x, w.y, kNorth), TimeUs{32000000}, fresh),
+              Status::kOk);
+    EXPECT_TRUE(fresh);
+    EXPECT_EQ(planner->mode(), PlannerMode::kForward);
+    EXPECT_FALSE(planner->steer_paused());
+    // Reaching a waypoint resumes steering, which from the root only no longer applies.
+    if (from_root_only) {
+      EXPECT_EQ(planner->steered_draws(), steered) << "seed " << seed;
+    }
+    bool has_west = false, has_east = false;
+    for (const Frontier& f : planner->tree().frontiers()) {
+      if (f.node != planner->current_node()) continue;
+      has_west |= f.position.x < w.x;
+      has_east |= f.position.x > w.x;
+    }
+    if (!has_west || !has_east) continue;
+    ++out.both_ways;
+    out.west += planner->waypoint().x < w.x ? 1 : 0;
   }
+  std::printf("%s: %d of %d nodes with frontiers both ways went west\n",
+              !steer ? "unsteered" : from_root_only ? "steered from the root" : "steered", out.west, out.both_ways);
+  return out;
+}
+
+// Steered, the next waypoint from a node with frontiers both ways is west, towards the unflown
+// rooms, on every seed; unsteered, either way.
+TEST(SrtStarPlanner, SteeredTheNextWaypointHeadsForTheUnflownSideOfTheBuilding) {
+  const NextWaypoints steered = next_waypoints_at_the_east_end(true, false);
+  EXPECT_GE(steered.both_ways, 8);
+  EXPECT_EQ(steered.west, steered.both_ways);
+  const NextWaypoints unsteered = next_waypoints_at_the_east_end(false, false);
+  EXPECT_GE(unsteered.both_ways, 8);
+  EXPECT_GT(unsteered.west, 0);
+  EXPECT_LT(unsteered.west, unsteered.both_ways);
+}
+
+// Steered from the root only, the fresh tree's root draws steered (the corridor's first tree:
+// its root's draw) and every later node draws as paper 002 does: at the node near the east end
+// the next waypoint goes either way, and no draw there counts as steered.
+TEST(SrtStarPlanner, SteeredFromTheRootOnlyLaterNodesDrawAsPaper002Does) {
+  const NextWaypoints n = next_waypoints_at_the_east_end(true, true);
+  EXPECT_GE(n.both_ways, 8);
+  EXPECT_GT(n.west, 0);
+  EXPECT_LT(n.west, n.both_ways);
+}
+
+// Steering from the root only is a way of steering: alone it is a configuration error.
+TEST(SrtStarPlanner, SteeringFromTheRootOnlyWithoutSteeringIsRefused) {
+  SrtStarPlanner planner;
+  SrtParams srt;
+  srt.steer_from_root_only = true;
+  EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kInvalidArgument);
+  srt.steer_unflown = true;
+  EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kOk);
 }
 
 // A steered waypoint the time limit gives up would be steered to again by the next tree, restart

@@ -78,6 +78,7 @@ bool* explorer_switch(const std::string& key, exploration::Params& p) {
   if (key == "srt_memory") return &p.srt.prefer_unvisited;
   if (key == "srt_rescue") return &p.srt.rescue_frontiers;
   if (key == "srt_steer") return &p.srt.steer_unflown;
+  if (key == "srt_steer_root") return &p.srt.steer_from_root_only;
   return nullptr;
 }
 

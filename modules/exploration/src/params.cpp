@@ -22,7 +22,8 @@ Status Params::validate() const {
                       srt.perception_range_m < 65.0f && positive(srt.discontinuity_m) &&
                       positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
                       srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
-                      non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1;
+                      non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1 &&
+                      (srt.steer_unflown || !srt.steer_from_root_only);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
     const KeepOut& k = srt.keep_out[i];

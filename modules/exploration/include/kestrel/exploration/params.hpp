@@ -72,6 +72,9 @@ struct SrtParams {
   bool steer_unflown = false;             // draw among the frontiers facing the most of the
                                           // building not yet flown (unflown_bearings.hpp; not in
                                           // paper 002)
+  bool steer_from_root_only = false;      // steer_unflown only while a tree is its root alone:
+                                          // where each fresh tree goes first; the tree then
+                                          // grows as paper 002 draws (needs steer_unflown)
   uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
   uint32_t arrival_work_per_cycle = 15000;  // work units (about 100 Verdex instructions each,
                                             // work_units.hpp) of the arrival step per guidance

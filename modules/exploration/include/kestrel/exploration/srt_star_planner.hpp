@@ -33,7 +33,9 @@
 // srt.steer_unflown the draw is among the frontiers whose bearing from the node faces the most
 // cells never flown (UnflownBearings: within 16 m, +-35 degrees, inside the flown area's
 // bounding box), counted once per choice as a work item of its own; after a steered waypoint
-// the time limit gave up, the draws are unsteered until a forward waypoint is reached. Poses
+// the time limit gave up, the draws are unsteered until a forward waypoint is reached. With
+// srt.steer_from_root_only as well, only the draws made while the tree is its root alone are
+// steered (where each fresh tree goes first); later nodes draw as paper 002 does. Poses
 // given while an arrival step is under way are not remembered as flown.
 //
 // Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
