@@ -336,8 +336,9 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   const uint16_t min_step_mm = static_cast<uint16_t>(std::lround(min_step * 1000.0f));
   constexpr uint16_t kRays = SectorScan::kRaysPerSector;
   // From the root only: over 30 minutes in iarc-arena, trees steered at every node kept to the
-  // 15 m room they were in (its unflown cells nearest), and never entered room A; where a
-  // fresh tree goes first is what steering is for (README, Exploration, steering).
+  // 15 m room they were in (its unflown cells nearest) and never entered room A. Steering only
+  // where each fresh tree goes first wins those rooms back but loses gt-building's, so it is
+  // an option, off (README, Exploration, steering).
   const bool steer = srt_.steer_unflown && !steer_paused_ && (!srt_.steer_from_root_only || tree_.nodes().size() == 1);
   if (steer && !bearings_counted_) {  // a work item of its own; the draw follows
     bearings_counted_ = true;
