@@ -699,7 +699,7 @@ TEST(SrtStarPlannerSliced, GivesTheOneShotResultWhateverTheBudget) {
       whole.seed = seed;
       // The options that read the flown grid or move frontiers: their results must not depend
       // on the poses given while a step is sliced either.
-      whole.steer_unflown = seed >= 2;
+      whole.steer = seed >= 2 ? SteerUnflown::kEveryNode : SteerUnflown::kNever;
       whole.prefer_unvisited = seed == 3;
       whole.rescue_frontiers = seed == 3;
       auto reference = std::make_unique<SrtStarPlanner>();
@@ -725,7 +725,7 @@ TEST(SrtStarPlannerSliced, GivesTheOneShotResultWhateverTheBudget) {
         EXPECT_EQ(reference->finished(), planner->finished());
         EXPECT_EQ(reference->waypoints_issued(), planner->waypoints_issued());
         EXPECT_EQ(reference->steered_draws(), planner->steered_draws());
-        if (whole.steer_unflown) {
+        if (whole.steer != SteerUnflown::kNever) {
           EXPECT_GT(planner->steered_draws(), 0u);
         }
         expect_same_tree(reference->tree(), planner->tree());

@@ -178,12 +178,11 @@ constexpr Pose2 kEastEnd{12.0f, 0, kNorth};  // facing a wall: both ends at +-90
 
 // A planner that flew the corridor west to east without reaching its waypoint (the outline
 // touched first), and whose time limit has just erased the tree at the east end.
-std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(bool steer, uint32_t seed, bool from_root_only = false) {
+std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(SteerUnflown steering, uint32_t seed) {
   auto planner = std::make_unique<SrtStarPlanner>();
   SrtParams srt;
   srt.arrival_work_per_cycle = 0;
-  srt.steer_unflown = steer;
-  srt.steer_from_root_only = from_root_only;
+  srt.steer = steering;
   srt.seed = seed;
   GuidanceParams g;
   g.waypoint_time_limit_s = 30.0f;
@@ -197,6 +196,9 @@ std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(bool steer, uint32_t s
   for (float x = 0.0f; x <= 12.0f; x += 0.5f)
     EXPECT_EQ(planner->update({x, 0.8f, 0}, corridor.scan(urg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
   EXPECT_EQ(planner->restarts(), 0u);
+  if (steering == SteerUnflown::kAfterRestart) {
+    EXPECT_EQ(planner->steered_draws(), 0u);  // the first tree draws as paper 002 does
+  }
   EXPECT_EQ(planner->update(kEastEnd, corridor.scan(urg, kEastEnd.x, kEastEnd.y, kEastEnd.theta), TimeUs{31000000}, fresh),
             Status::kOk);
   EXPECT_EQ(planner->restarts(), 1u);
@@ -212,15 +214,16 @@ struct NextWaypoints {
   int west = 0;
 };
 
-NextWaypoints next_waypoints_at_the_east_end(bool steer, bool from_root_only) {
+NextWaypoints next_waypoints_at_the_east_end(SteerUnflown steering) {
   const SegmentWorld corridor = long_corridor();
   const LaserModel urg = LaserModel::urg04lx();
   NextWaypoints out;
   for (uint32_t seed = 1; seed <= 40; ++seed) {
-    const auto planner = restarted_at_the_east_end(steer, seed, from_root_only);
+    const auto planner = restarted_at_the_east_end(steering, seed);
     const uint32_t steered = planner->steered_draws();
-    if (steer) {
-      EXPECT_GE(steered, 1u) << "seed " << seed;  // the first tree's root, at least
+    if (steering != SteerUnflown::kNever) {
+      // The first tree's root, at least; after a restart only, the fresh tree's root.
+      EXPECT_GE(steered, 1u) << "seed " << seed;
     }
     const Point2 w = planner->waypoint();
     bool fresh = false;
@@ -230,7 +233,7 @@ NextWaypoints next_waypoints_at_the_east_end(bool steer, bool from_root_only) {
     EXPECT_EQ(planner->mode(), PlannerMode::kForward);
     EXPECT_FALSE(planner->steer_paused());
     // Reaching a waypoint resumes steering, which from the root only no longer applies.
-    if (from_root_only) {
+    if (steering == SteerUnflown::kFromRootOnly) {
       EXPECT_EQ(planner->steered_draws(), steered) << "seed " << seed;
     }
     bool has_west = false, has_east = false;
@@ -243,18 +246,18 @@ NextWaypoints next_waypoints_at_the_east_end(bool steer, bool from_root_only) {
     ++out.both_ways;
     out.west += planner->waypoint().x < w.x ? 1 : 0;
   }
-  std::printf("%s: %d of %d nodes with frontiers both ways went west\n",
-              !steer ? "unsteered" : from_root_only ? "steered from the root" : "steered", out.west, out.both_ways);
+  std::printf("steered %s: %d of %d nodes with frontiers both ways went west\n", to_string(steering), out.west,
+              out.both_ways);
   return out;
 }
 
 // Steered, the next waypoint from a node with frontiers both ways is west, towards the unflown
 // rooms, on every seed; unsteered, either way.
 TEST(SrtStarPlanner, SteeredTheNextWaypointHeadsForTheUnflownSideOfTheBuilding) {
-  const NextWaypoints steered = next_waypoints_at_the_east_end(true, false);
+  const NextWaypoints steered = next_waypoints_at_the_east_end(SteerUnflown::kEveryNode);
   EXPECT_GE(steered.both_ways, 8);
   EXPECT_EQ(steered.west, steered.both_ways);
-  const NextWaypoints unsteered = next_waypoints_at_the_east_end(false, false);
+  const NextWaypoints unsteered = next_waypoints_at_the_east_end(SteerUnflown::kNever);
   EXPECT_GE(unsteered.both_ways, 8);
   EXPECT_GT(unsteered.west, 0);
   EXPECT_LT(unsteered.west, unsteered.both_ways);
@@ -264,20 +267,32 @@ TEST(SrtStarPlanner, SteeredTheNextWaypointHeadsForTheUnflownSideOfTheBuilding) 
 // its root's draw) and every later node draws as paper 002 does: at the node near the east end
 // the next waypoint goes either way, and no draw there counts as steered.
 TEST(SrtStarPlanner, SteeredFromTheRootOnlyLaterNodesDrawAsPaper002Does) {
-  const NextWaypoints n = next_waypoints_at_the_east_end(true, true);
+  const NextWaypoints n = next_waypoints_at_the_east_end(SteerUnflown::kFromRootOnly);
   EXPECT_GE(n.both_ways, 8);
   EXPECT_GT(n.west, 0);
   EXPECT_LT(n.west, n.both_ways);
 }
 
-// Steering from the root only is a way of steering: alone it is a configuration error.
-TEST(SrtStarPlanner, SteeringFromTheRootOnlyWithoutSteeringIsRefused) {
+// Steered after a restart only, the first tree draws as paper 002 does (checked in
+// restarted_at_the_east_end: no steered draw before the time limit) and the fresh tree is
+// steered from its root on: every node near the east end with frontiers both ways goes west.
+TEST(SrtStarPlanner, SteeredAfterARestartOnlyTheFreshTreeHeadsForTheUnflownSide) {
+  const NextWaypoints n = next_waypoints_at_the_east_end(SteerUnflown::kAfterRestart);
+  EXPECT_GE(n.both_ways, 8);
+  EXPECT_EQ(n.west, n.both_ways);
+}
+
+// srt.steer by name (kestrel-sim's srt_steer=...); anything else is refused, and so is a value
+// outside the enumeration when the planner is configured.
+TEST(SrtStarPlanner, SteeringModesRoundTripByNameAndOthersAreRefused) {
+  for (const SteerUnflown s : kSteerUnflownModes) EXPECT_EQ(parse_steer_unflown(to_string(s)).value(), s);
+  EXPECT_EQ(parse_steer_unflown("on").status(), Status::kInvalidArgument);
+  EXPECT_EQ(parse_steer_unflown(nullptr).status(), Status::kInvalidArgument);
   SrtStarPlanner planner;
   SrtParams srt;
-  srt.steer_from_root_only = true;
+  EXPECT_EQ(srt.steer, SteerUnflown::kAfterRestart);
+  srt.steer = static_cast<SteerUnflown>(4);
   EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kInvalidArgument);
-  srt.steer_unflown = true;
-  EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kOk);
 }
 
 // A steered waypoint the time limit gives up would be steered to again by the next tree, restart
@@ -289,7 +304,7 @@ TEST(SrtStarPlanner, ASteeredWaypointNotReachedPausesSteeringUntilAWaypointIsRea
   const LaserModel urg = LaserModel::urg04lx();
   int west = 0;
   for (uint32_t seed = 1; seed <= 20; ++seed) {
-    const auto planner = restarted_at_the_east_end(true, seed);
+    const auto planner = restarted_at_the_east_end(SteerUnflown::kEveryNode, seed);
     EXPECT_TRUE(planner->steer_paused());
     EXPECT_EQ(planner->steer_pauses(), 1u);
     west += planner->waypoint().x < kEastEnd.x ? 1 : 0;
@@ -310,7 +325,7 @@ TEST(SrtStarPlanner, ASteeredWaypointNotReachedPausesSteeringUntilAWaypointIsRea
 TEST(SrtStarPlanner, ATimeOutWhilePausedStaysOnePauseAndResetForgetsIt) {
   const SegmentWorld corridor = long_corridor();
   const LaserModel urg = LaserModel::urg04lx();
-  const auto planner = restarted_at_the_east_end(true, 5);
+  const auto planner = restarted_at_the_east_end(SteerUnflown::kEveryNode, 5);
   ASSERT_TRUE(planner->steer_paused());
   const uint32_t steered = planner->steered_draws();
   EXPECT_GE(steered, 1u);

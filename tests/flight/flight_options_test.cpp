@@ -107,18 +107,17 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_TRUE(rescue.stack.explorer.srt.rescue_frontiers);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "maybe"}}}, rescue),
             "srt_rescue: expected on or off, got 'maybe'");
-  // Steering from a fresh tree's root only: with steering, or refused when the stack starts.
-  FlightOptions root;
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore,
-                                 sim::MissionOptions{{{"srt_steer", "on"}, {"srt_steer_root", "on"}}}, root),
+  // Which draws are steered: after a restart by default, any of the four by name.
+  FlightOptions steer;
+  EXPECT_EQ(steer.stack.explorer.srt.steer, exploration::SteerUnflown::kAfterRestart);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_steer", "root"}}}, steer),
             "");
-  EXPECT_TRUE(root.stack.explorer.srt.steer_from_root_only);
-  EXPECT_EQ(root.stack.explorer.validate(), Status::kOk);
-  FlightOptions root_alone;
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_steer_root", "on"}}},
-                                 root_alone),
+  EXPECT_EQ(steer.stack.explorer.srt.steer, exploration::SteerUnflown::kFromRootOnly);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_steer", "off"}}}, steer),
             "");
-  EXPECT_EQ(root_alone.stack.explorer.validate(), Status::kInvalidArgument);
+  EXPECT_EQ(steer.stack.explorer.srt.steer, exploration::SteerUnflown::kNever);
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_steer", "on"}}}, steer),
+            "srt_steer: expected off, restarted, every or root, got 'on'");
   // Explore's only.
   FlightOptions h;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, margins, h), "");

@@ -77,8 +77,6 @@ bool* explorer_switch(const std::string& key, exploration::Params& p) {
   if (key == "approach") return &p.approach.enabled;
   if (key == "srt_memory") return &p.srt.prefer_unvisited;
   if (key == "srt_rescue") return &p.srt.rescue_frontiers;
-  if (key == "srt_steer") return &p.srt.steer_unflown;
-  if (key == "srt_steer_root") return &p.srt.steer_from_root_only;
   return nullptr;
 }
 
@@ -163,6 +161,10 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "explore_s" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d < 0) return "explore_s: '" + value + "' is not a non-negative number";
       out.stack.mission.explore_time_limit_s = static_cast<float>(d);
+    } else if (key == "srt_steer" && kind == mission::MissionKind::kExplore) {
+      const Result<exploration::SteerUnflown> s = exploration::parse_steer_unflown(value.c_str());
+      if (!s.ok()) return "srt_steer: expected off, restarted, every or root, got '" + value + "'";
+      out.stack.explorer.srt.steer = s.value();
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
     } else if (bool* on = explorer_switch(key, out.stack.explorer); on != nullptr && kind == mission::MissionKind::kExplore) {

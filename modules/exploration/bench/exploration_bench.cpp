@@ -188,7 +188,7 @@ void BM_SectorScanCorridorUrg(benchmark::State& s) {
 void BM_SectorScanTablesUrg(benchmark::State& s) {
   sector_scan(s, 682, 240.0, true);
 }
-// The work item srt.steer_unflown adds to each choice: the unflown cells around a node in the
+// The work item a steered draw (srt.steer) adds to each choice: the unflown cells around a node in the
 // middle of a gt-building-sized outline (24 x 16 m), with a corridor and two rooms flown.
 void BM_UnflownCount(benchmark::State& s) {
   auto grid = std::make_unique<VisitedGrid>();

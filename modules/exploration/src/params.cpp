@@ -1,6 +1,7 @@
 #include "kestrel/exploration/params.hpp"
 
 #include <cmath>
+#include <cstring>
 
 #include "kestrel/exploration/beam_geometry.hpp"
 
@@ -14,6 +15,27 @@ bool non_negative(float v) {
 }
 }  // namespace
 
+const char* to_string(SteerUnflown s) {
+  switch (s) {
+    case SteerUnflown::kNever:
+      return "off";
+    case SteerUnflown::kAfterRestart:
+      return "restarted";
+    case SteerUnflown::kEveryNode:
+      return "every";
+    case SteerUnflown::kFromRootOnly:
+      return "root";
+  }
+  return "unknown";
+}
+
+Result<SteerUnflown> parse_steer_unflown(const char* name) {
+  if (name == nullptr) return Status::kInvalidArgument;
+  for (SteerUnflown s : kSteerUnflownModes)
+    if (std::strcmp(name, to_string(s)) == 0) return s;
+  return Status::kInvalidArgument;
+}
+
 Status Params::validate() const {
   const bool wall_ok = positive(wall.target_range_m) && positive(wall.safe_range_m) &&
                        wall.safe_range_m < wall.target_range_m && non_negative(wall.gain_wf) &&
@@ -23,7 +45,7 @@ Status Params::validate() const {
                       positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
                       srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
                       non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1 &&
-                      (srt.steer_unflown || !srt.steer_from_root_only);
+                      static_cast<uint8_t>(srt.steer) <= static_cast<uint8_t>(SteerUnflown::kFromRootOnly);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
     const KeepOut& k = srt.keep_out[i];

@@ -229,6 +229,21 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
   return Status::kOk;
 }
 
+bool SrtStarPlanner::steers_this_draw() const {
+  if (steer_paused_) return false;
+  switch (srt_.steer) {
+    case SteerUnflown::kNever:
+      return false;
+    case SteerUnflown::kAfterRestart:
+      return restarts_ > 0;
+    case SteerUnflown::kEveryNode:
+      return true;
+    case SteerUnflown::kFromRootOnly:
+      return tree_.nodes().size() == 1;
+  }
+  return false;
+}
+
 void SrtStarPlanner::restart_tree(RestartReason why) {
   if (why != RestartReason::kExhausted) looked_back_ = false;
   tree_.clear();
@@ -335,11 +350,7 @@ uint32_t SrtStarPlanner::pick_frontier(TimeUs now) {
   const float min_step = 2.0f * guidance_.arrival_distance_m;
   const uint16_t min_step_mm = static_cast<uint16_t>(std::lround(min_step * 1000.0f));
   constexpr uint16_t kRays = SectorScan::kRaysPerSector;
-  // From the root only: over 30 minutes in iarc-arena, trees steered at every node kept to the
-  // 15 m room they were in (its unflown cells nearest) and never entered room A. Steering only
-  // where each fresh tree goes first wins those rooms back but loses gt-building's, so it is
-  // an option, off (README, Exploration, steering).
-  const bool steer = srt_.steer_unflown && !steer_paused_ && (!srt_.steer_from_root_only || tree_.nodes().size() == 1);
+  const bool steer = steers_this_draw();
   if (steer && !bearings_counted_) {  // a work item of its own; the draw follows
     bearings_counted_ = true;
     return bearings_.count(visited_, node.position);
@@ -445,7 +456,7 @@ uint32_t SrtStarPlanner::widen_extent_to_returns() {
   // went north). Every node's returns widen it to the walls the laser has seen; one beam in
   // kExtentBeamStride is enough for a box.
   constexpr std::size_t kExtentBeamStride = 4;
-  if (!srt_.steer_unflown || !sectors_.beam_table_fits(job_scan_)) return 0;
+  if (srt_.steer == SteerUnflown::kNever || !sectors_.beam_table_fits(job_scan_)) return 0;
   const float edge = job_pose_.theta + SectorScan::start_of(job_scan_);
   const float c = std::cos(edge), s = std::sin(edge);
   uint32_t used = work::kTableEntry;

@@ -47,6 +47,25 @@ struct WallFollowParams {
   FieldNormalisation normalisation = FieldNormalisation::kPerRadian;
 };
 
+// Which of SRT-Star's draws steer towards the building not yet flown (UnflownBearings; not in
+// paper 002, which draws among the node's frontiers alike). Section V's restarts erase the
+// tree, and a fresh tree knows only what it sees from then on: it is the fresh trees that fly
+// back over rooms already explored, so by default only they are steered. Steered at every
+// node, trees in iarc-arena's 15 m rooms kept sweeping the room they were in (its unflown
+// cells are the nearest); the first tree has its own frontiers to remember the building by.
+enum class SteerUnflown : uint8_t {
+  kNever,         // paper 002: every draw alike among the node's frontiers
+  kAfterRestart,  // every draw of a tree grown after a restart (of any reason)
+  kEveryNode,     // every draw
+  kFromRootOnly,  // the draws a tree makes while it is its root alone: where each tree goes first
+};
+inline constexpr SteerUnflown kSteerUnflownModes[] = {SteerUnflown::kNever, SteerUnflown::kAfterRestart,
+                                                      SteerUnflown::kEveryNode, SteerUnflown::kFromRootOnly};
+// "off", "restarted", "every", "root" (kestrel-sim's srt_steer=...).
+const char* to_string(SteerUnflown s);
+// kInvalidArgument for any other name, or nullptr.
+Result<SteerUnflown> parse_steer_unflown(const char* name);
+
 struct SrtParams {
   uint16_t sector_count = 32;             // sectors the scan is divided into (<= kMaxSectors)
   float perception_range_m = 3.5f;        // R_p: a sector with no return closer is obstacle-free
@@ -69,12 +88,9 @@ struct SrtParams {
                                           // return it starts within the clearance of, and an open
                                           // sector's frontier with no path from its node goes to
                                           // an ancestor (srt_star_planner.hpp; not in paper 002)
-  bool steer_unflown = false;             // draw among the frontiers facing the most of the
-                                          // building not yet flown (unflown_bearings.hpp; not in
-                                          // paper 002)
-  bool steer_from_root_only = false;      // steer_unflown only while a tree is its root alone:
-                                          // where each fresh tree goes first; the tree then
-                                          // grows as paper 002 draws (needs steer_unflown)
+  SteerUnflown steer = SteerUnflown::kAfterRestart;  // which draws face the building not yet
+                                                    // flown (unflown_bearings.hpp; not in
+                                                    // paper 002, whose draws kNever makes)
   uint32_t seed = 1;                      // PRNG seed: runs are deterministic per seed
   uint32_t arrival_work_per_cycle = 15000;  // work units (about 100 Verdex instructions each,
                                             // work_units.hpp) of the arrival step per guidance

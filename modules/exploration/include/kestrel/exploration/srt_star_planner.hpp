@@ -29,14 +29,13 @@
 // With srt.prefer_unvisited the frontier is drawn at random among those of the current node that
 // lie where the vehicle has not flown (VisitedGrid, kept across section V's restarts), and
 // among all of them only when none does; off, among all of them, as in paper 002. A forward
-// waypoint the time limit gives up counts as visited, with its frontier. With
-// srt.steer_unflown the draw is among the frontiers whose bearing from the node faces the most
-// cells never flown (UnflownBearings: within 16 m, +-35 degrees, inside the flown area's
-// bounding box), counted once per choice as a work item of its own; after a steered waypoint
-// the time limit gave up, the draws are unsteered until a forward waypoint is reached. With
-// srt.steer_from_root_only as well, only the draws made while the tree is its root alone are
-// steered (where each fresh tree goes first); later nodes draw as paper 002 does. Poses
-// given while an arrival step is under way are not remembered as flown.
+// waypoint the time limit gives up counts as visited, with its frontier. A steered draw
+// (srt.steer: by default in trees grown after a restart) is among the frontiers whose bearing
+// from the node faces the most cells never flown (UnflownBearings: within 16 m, +-35 degrees,
+// inside the flown area's bounding box), counted once per choice as a work item of its own;
+// after a steered waypoint the time limit gave up, the draws are unsteered until a forward
+// waypoint is reached. Poses given while an arrival step is under way are not remembered as
+// flown.
 //
 // Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
 // and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
@@ -151,6 +150,7 @@ class SrtStarPlanner {
   // Starts the arrival step's slices on a copy of (pose, scan).
   Status start_grow(const Pose2& pose, const LaserScan& scan);
   void start_choose(const Pose2& pose, const LaserScan& scan);
+  bool steers_this_draw() const;  // srt.steer's choice, and not paused
   void restart_tree(RestartReason why);
   // Runs slices of the arrival step until it is done or the cycle's budget is used.
   void work_on_arrival(TimeUs now);
