@@ -282,8 +282,8 @@ TEST(SrtStarPlanner, SteeredAfterARestartOnlyTheFreshTreeHeadsForTheUnflownSide)
   EXPECT_EQ(n.west, n.both_ways);
 }
 
-// srt.steer by name (kestrel-sim's srt_steer=...); anything else is refused, and so is a value
-// outside the enumeration when the planner is configured.
+// srt.steer by name (kestrel-sim's srt_steer=...); anything else is refused. Every listed mode
+// configures the planner and a value outside the list is refused.
 TEST(SrtStarPlanner, SteeringModesRoundTripByNameAndOthersAreRefused) {
   for (const SteerUnflown s : kSteerUnflownModes) EXPECT_EQ(parse_steer_unflown(to_string(s)).value(), s);
   EXPECT_EQ(parse_steer_unflown("on").status(), Status::kInvalidArgument);
@@ -291,6 +291,10 @@ TEST(SrtStarPlanner, SteeringModesRoundTripByNameAndOthersAreRefused) {
   SrtStarPlanner planner;
   SrtParams srt;
   EXPECT_EQ(srt.steer, SteerUnflown::kAfterRestart);
+  for (const SteerUnflown s : kSteerUnflownModes) {
+    srt.steer = s;
+    EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kOk) << to_string(s);
+  }
   srt.steer = static_cast<SteerUnflown>(4);
   EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kInvalidArgument);
 }

@@ -13,6 +13,13 @@ bool positive(float v) {
 bool non_negative(float v) {
   return std::isfinite(v) && v >= 0.0f;
 }
+// Against the one list of modes, which parse_steer_unflown reads too: a new mode is added there
+// and nowhere else.
+bool known(SteerUnflown mode) {
+  for (SteerUnflown s : kSteerUnflownModes)
+    if (s == mode) return true;
+  return false;
+}
 }  // namespace
 
 const char* to_string(SteerUnflown s) {
@@ -45,7 +52,7 @@ Status Params::validate() const {
                       positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
                       srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
                       non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1 &&
-                      static_cast<uint8_t>(srt.steer) <= static_cast<uint8_t>(SteerUnflown::kFromRootOnly);
+                      known(srt.steer);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
     const KeepOut& k = srt.keep_out[i];
