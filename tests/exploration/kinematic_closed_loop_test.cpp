@@ -195,10 +195,11 @@ FlightLog fly(Explorer& ex, double duration_s, uint32_t seed, int stride) {
 // within ray_search_sectors of the door's frontier, drops it, and exploration can end in the
 // start room; a tree that runs out is not trusted at once, see srt_star_planner.hpp).
 // Collisions, clearance and allocations are checked on every flight; exploring the inner room
-// is asked of a share of the flights: measured on seeds 1-10 with the trees grown after a
-// restart steered (srt.steer's default), blend 9 and SRT 7 (drawn as paper 002 draws, 8 and
-// 10; earlier, while a first tree that ran out ended exploration, 7 and 5); the short runs fly
-// seeds 1 and 2 and ask for one.
+// is asked of a share of the flights: measured on seeds 1-10 with the defaults (a
+// discontinuity frontier needs a jump between neighbouring beams, the trees grown after a
+// restart are steered), blend 9 and SRT 9 (before the beam jumps, 9 and 7; drawn as paper 002
+// draws, 8 and 10; earlier, while a first tree that ran out ended exploration, 7 and 5); the
+// short runs fly seeds 1 and 2 and ask for one.
 struct Scale {
   double flight_s;
   std::vector<uint32_t> seeds;

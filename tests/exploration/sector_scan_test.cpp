@@ -85,6 +85,28 @@ TEST_F(SectorTest, DoorwayGivesDiscontinuityFrontiersOnTheFarSide) {
   }
 }
 
+// From inside a 2 m corridor its walls, seen aslant, step the sectors' nearest returns by more
+// than discontinuity_m from one sector to the next with no gap anywhere: the points such steps
+// make lie on the walls, where no later safe region covers them. The range never jumps between
+// neighbouring beams there, so by default they are no frontiers (paper 002's radii alone: some).
+TEST_F(SectorTest, AWallSeenAslantIsNoDiscontinuity) {
+  SegmentWorld corridor;
+  corridor.add(-3.0, -1.0, 12.0, -1.0);
+  corridor.add(-3.0, 1.0, 12.0, 1.0);
+  corridor.add(12.0, -1.0, 12.0, 1.0);
+  for (double heading : {0.0, 0.3, -0.5}) {
+    const LaserScan scan = corridor.scan(urg, 0.0, 0.5, heading);
+    ASSERT_EQ(sectors->build(scan, params), Status::kOk);
+    EXPECT_EQ(count_kind(*sectors, FrontierKind::kLeft) + count_kind(*sectors, FrontierKind::kRight), 0)
+        << "heading " << heading;
+    SrtParams paper = params;
+    paper.discontinuity_needs_beam_jump = false;
+    ASSERT_EQ(sectors->build(scan, paper), Status::kOk);
+    EXPECT_GE(count_kind(*sectors, FrontierKind::kLeft) + count_kind(*sectors, FrontierKind::kRight), 1)
+        << "heading " << heading;
+  }
+}
+
 TEST_F(SectorTest, SmallStepsAreNotDiscontinuities) {
   SegmentWorld w;
   w.add(-1.0, -1.2, -1.0, 1.2);

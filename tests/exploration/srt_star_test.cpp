@@ -301,11 +301,13 @@ TEST(SrtStarPlanner, WaypointTimeLimitErasesTheTreeAndRestarts) {
   ASSERT_GE(grown, 2u);
   ASSERT_FALSE(planner->finished());
   const TimeUs issued = planner->waypoint_time();
-  // The vehicle is stuck away from the waypoint.
+  // The vehicle is stuck away from the waypoint, in the east corridor looking back along it (a
+  // new root there has frontiers: the corridor's far end is beyond R_p).
+  const Pose2 stuck{3.5f, 0.0f, static_cast<float>(M_PI)};
   const Point2 wp = planner->waypoint();
-  const Pose2 stuck{wp.x - 1.0f, wp.y, 0};
+  ASSERT_GT(std::hypot(wp.x - stuck.x, wp.y - stuck.y), 1.0f);
   bool fresh = false;
-  const LaserScan scan = world.scan(kUrg, stuck.x, stuck.y, 0);
+  const LaserScan scan = world.scan(kUrg, stuck.x, stuck.y, stuck.theta);
   ASSERT_EQ(planner->update(stuck, scan, issued + Duration::from_s(9.9), fresh), Status::kOk);
   EXPECT_FALSE(fresh);
   EXPECT_EQ(planner->restarts(), 0u);
@@ -837,10 +839,13 @@ SegmentWorld corridor_with_side_room() {
 }
 
 TEST(SrtStarPlanner, RescuedFrontiersReachTheCorridorsEndAndTheTreeStillFinishes) {
-  // Over 40 seeds of teleported flights, trees reached the corridor's east end on 20 and the
-  // room on 11 with paper 002's rules; 38 and 24 with rescue_frontiers (the room's door leaves
+  // Over 40 seeds of teleported flights, trees reached the corridor's east end on 13 and the
+  // room on 10 with paper 002's rules; 22 and 27 with rescue_frontiers (the room's door leaves
   // 0.4 m for a waypoint, and frontiers seen through it are lost in other ways). Handing up
-  // must not grow a tree without end: every flight's first tree runs out.
+  // must not grow a tree without end: every flight's first tree runs out. (Before a
+  // discontinuity needed a jump between neighbouring beams, the corridor's walls seen aslant
+  // made frontiers along it: 20 and 11 without, 38 and 24 with.)
+  int east_ends_without = 0;
   for (bool rescue : {false, true}) {
     SCOPED_TRACE(::testing::Message() << "rescue " << rescue);
     int east_ends = 0, rooms = 0, handed_up = 0;
@@ -867,11 +872,11 @@ TEST(SrtStarPlanner, RescuedFrontiersReachTheCorridorsEndAndTheTreeStillFinishes
     std::printf("[ rescue ] rescue_frontiers %s: corridor's end on %d of 40 seeds, room on %d, %d handed up\n",
                 rescue ? "on" : "off", east_ends, rooms, handed_up);
     if (rescue) {
-      EXPECT_GE(east_ends, 35);
+      EXPECT_GE(east_ends, east_ends_without + 6);  // what the option is for: the test can fail
       EXPECT_GE(rooms, 20);
       EXPECT_GT(handed_up, 0);
     } else {
-      EXPECT_LE(east_ends, 25);  // the loss the option is for: the test can fail
+      east_ends_without = east_ends;
       EXPECT_EQ(handed_up, 0);
     }
   }

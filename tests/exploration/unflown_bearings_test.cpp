@@ -206,7 +206,7 @@ std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(SteerUnflown steering,
   return planner;
 }
 
-// Over seeds 1-40, the vehicle arrives at the fresh tree's first waypoint, near the corridor's
+// Over seeds 1-80, the vehicle arrives at the fresh tree's first waypoint, near the corridor's
 // east end: how many of the new nodes own frontiers both ways (a node east of the root has its
 // west ones inside the root's safe region), and how many of those drew their next waypoint west.
 struct NextWaypoints {
@@ -218,7 +218,7 @@ NextWaypoints next_waypoints_at_the_east_end(SteerUnflown steering) {
   const SegmentWorld corridor = long_corridor();
   const LaserModel urg = LaserModel::urg04lx();
   NextWaypoints out;
-  for (uint32_t seed = 1; seed <= 40; ++seed) {
+  for (uint32_t seed = 1; seed <= 80; ++seed) {
     const auto planner = restarted_at_the_east_end(steering, seed);
     const uint32_t steered = planner->steered_draws();
     if (steering != SteerUnflown::kNever) {

@@ -9,9 +9,9 @@
 //  - ExploresEveryRoom (host only), with the UTM-30LX at 40 Hz and with the URG-04LX at 10 Hz:
 //    exploring for up to 30 minutes, at least 90 % of the reachable area seen and all seven
 //    rooms entered, the inner one through its 0.95 m gap (paper 002 Figure 5), no collision,
-//    no allocation once armed, and landed at the end. UTM-30LX seed 4 reaches 90 % at 664 s
-//    and every room at 13:19; URG-04LX seed 8 at 14:08 and 14:09. Over seeds 1-30 (README,
-//    Exploration) every room is entered without a collision on 23 UTM-30LX flights and on 15
+//    no allocation once armed, and landed at the end. UTM-30LX seed 4 reaches 90 % at 681 s
+//    and every room at 14:41; URG-04LX seed 8 at 22:42 and 22:43. Over seeds 1-30 (README,
+//    Exploration) every room is entered without a collision on 29 UTM-30LX flights and on 17
 //    URG-04LX ones: a flight that diverges (another compiler's rounding) may not pass, so the
 //    sanitizer build runs these same seeds and must pass too.
 //  - LandsHeldOffAWallItTookOffBeside (every preset): home 0.36 m from a wall, inside the

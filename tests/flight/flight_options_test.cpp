@@ -107,6 +107,13 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_TRUE(rescue.stack.explorer.srt.rescue_frontiers);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "maybe"}}}, rescue),
             "srt_rescue: expected on or off, got 'maybe'");
+  // Discontinuity frontiers from the beams' jumps (default) or, off, from the sectors' radii
+  // alone as paper 002 has it.
+  FlightOptions jumps;
+  EXPECT_TRUE(jumps.stack.explorer.srt.discontinuity_needs_beam_jump);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_beam_jumps", "off"}}}, jumps),
+            "");
+  EXPECT_FALSE(jumps.stack.explorer.srt.discontinuity_needs_beam_jump);
   // Which draws are steered: after a restart by default, any of the four by name.
   FlightOptions steer;
   EXPECT_EQ(steer.stack.explorer.srt.steer, exploration::SteerUnflown::kAfterRestart);

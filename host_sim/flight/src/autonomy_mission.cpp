@@ -77,6 +77,7 @@ bool* explorer_switch(const std::string& key, exploration::Params& p) {
   if (key == "approach") return &p.approach.enabled;
   if (key == "srt_memory") return &p.srt.prefer_unvisited;
   if (key == "srt_rescue") return &p.srt.rescue_frontiers;
+  if (key == "srt_beam_jumps") return &p.srt.discontinuity_needs_beam_jump;
   return nullptr;
 }
 

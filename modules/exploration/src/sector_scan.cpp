@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "kestrel/core/angle.hpp"
 
@@ -69,6 +70,7 @@ void SectorScan::finish() {
   // shared edge, at that sector's radius (where the safe region borders the unknown beyond the
   // nearer obstacle's edge). Two obstacle-free neighbours are no discontinuity.
   for (uint16_t s = 0; s + 1 < count_; ++s) {
+    if (needs_beam_jump_ && !beam_jump_[s] && !beam_jump_[s + 1]) continue;  // a wall seen aslant
     const int32_t right = radius_mm_[s], left = radius_mm_[s + 1];
     const float edge = start_rad_ + static_cast<float>(s + 1) * width_rad_;
     if (left - right > jump_mm_) {  // sector s+1 reaches farther: its right (clockwise) point
@@ -116,16 +118,32 @@ Status SectorScan::begin(const LaserScan& scan, const SrtParams& params) {
 
   const long rp_long = std::lround(params.perception_range_m * 1000.0f);
   const uint16_t rp_mm = static_cast<uint16_t>(std::clamp<long>(rp_long, kMinValidRangeMm, 65535));
+  const long jump_long = std::lround(params.discontinuity_m * 1000.0f);
+  jump_mm_ = static_cast<int32_t>(std::clamp<long>(jump_long, 1, 65535));
+  needs_beam_jump_ = params.discontinuity_needs_beam_jump;
   std::array<bool, kMaxSectors> seen{};
   for (uint16_t s = 0; s < sectors; ++s) {
     radius_mm_[s] = rp_mm;
     free_[s] = true;
+    beam_jump_[s] = false;
   }
+  // The last beam that said something about its direction, for the jumps between neighbours:
+  // a dropout or a deflected beam between two returns is stepped over. No return is the
+  // sensor's reach: a wall seen aslant leaving the URG-04LX's 4 m is no jump.
+  const int32_t no_return_mm = scan.max_range_mm >= kMinValidRangeMm ? int32_t{scan.max_range_mm} : int32_t{65535};
+  int32_t previous_mm = -1;
+  std::size_t previous_sector = 0;
   for (std::size_t i = 0; i < beams; ++i) {
     // Beam i's centre lies in sector floor((i + 1/2) S / B), counted from the clockwise end.
     const std::size_t k = beam_slot(i);
     const std::size_t s = ((2 * k + 1) * sectors) / (2 * beams);
     const uint16_t r = scan.range_mm[i];
+    if (r >= kMinValidRangeMm || r == range_code::kNoReturn) {
+      const int32_t here = r == range_code::kNoReturn ? no_return_mm : int32_t{r};
+      if (previous_mm >= 0 && std::abs(here - previous_mm) > jump_mm_) beam_jump_[s] = beam_jump_[previous_sector] = true;
+      previous_mm = here;
+      previous_sector = s;
+    }
     if (r >= kMinValidRangeMm) {
       seen[s] = true;
       if (r < rp_mm) {
@@ -150,8 +168,6 @@ Status SectorScan::begin(const LaserScan& scan, const SrtParams& params) {
   rho_ = std::max(params.clearance_m, 0.0f);
   rp_m_ = static_cast<float>(rp_mm) * 1e-3f;
   cap_ = std::max(rp_m_ - rho_, 0.0f);
-  const long jump_long = std::lround(params.discontinuity_m * 1000.0f);
-  jump_mm_ = static_cast<int32_t>(std::clamp<long>(jump_long, 1, 65535));
   const std::size_t rays = static_cast<std::size_t>(sectors) * kRaysPerSector;
   for (std::size_t q = 0; q < rays; ++q)
     clear_[q] = std::min(cap_, static_cast<float>(radius_mm_[q / kRaysPerSector]) * 1e-3f);

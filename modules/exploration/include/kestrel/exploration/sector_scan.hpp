@@ -6,7 +6,12 @@
 // mid and a right point (Fig. 3): the mid-point is a frontier when the whole sector is
 // obstacle-free (no return within R_p); the left or right point is a frontier when the sector
 // reaches much farther than its neighbour on that side (a range discontinuity: a doorway, the
-// end of a wall).
+// end of a wall). With SrtParams::discontinuity_needs_beam_jump (the default; not in paper 002)
+// the range must also jump by that much between two neighbouring beams of the two sectors: a
+// wall seen aslant steps the sectors' radii, nearest return by nearest return, by more than the
+// threshold with no gap in it (a 2 m corridor's walls, seen from inside it), and the point such a
+// step makes lies on the wall, where no later safe region can cover it, so only flying there
+// removes it (README, Exploration).
 //
 // For motion the safe region is eroded by the vehicle's clearance rho (Freda and Oriolo account
 // for the robot's size the same way): every sector holds kRaysPerSector evenly spaced rays, and a
@@ -96,6 +101,8 @@ class SectorScan {
   std::array<uint16_t, kMaxSectors> radius_mm_{};
   std::array<uint16_t, kMaxSectors * kRaysPerSector> clear_mm_{};
   std::array<bool, kMaxSectors> free_{};
+  std::array<bool, kMaxSectors> beam_jump_{};  // holds one end of a jump between neighbouring beams
+  bool needs_beam_jump_ = true;
   StaticVector<LocalFrontier, kMaxLocalFrontiers> frontiers_;
   float start_rad_ = 0;
   float width_rad_ = 0;
