@@ -70,9 +70,9 @@ struct SrtParams {
   uint16_t sector_count = 32;             // sectors the scan is divided into (<= kMaxSectors)
   float perception_range_m = 3.5f;        // R_p: a sector with no return closer is obstacle-free
   float discontinuity_m = 1.0f;           // radius jump between adjacent sectors that is a frontier
-  bool discontinuity_needs_beam_jump = true;  // ... when the range also jumps that much between
-                                              // two neighbouring beams of the two sectors: not a
-                                              // wall seen aslant (sector_scan.hpp; not in
+  bool discontinuity_needs_beam_jump = true;  // ... when one of the two sectors also holds a
+                                              // jump that large between consecutive beams: not
+                                              // a wall seen aslant (sector_scan.hpp; not in
                                               // paper 002, whose sectors' radii alone decide)
   float step_min_fraction = 0.5f;         // new waypoint between these fractions of the sector
   float step_max_fraction = 0.9f;         //   radius (SRT's alpha), ...

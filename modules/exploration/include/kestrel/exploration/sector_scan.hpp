@@ -7,11 +7,15 @@
 // obstacle-free (no return within R_p); the left or right point is a frontier when the sector
 // reaches much farther than its neighbour on that side (a range discontinuity: a doorway, the
 // end of a wall). With SrtParams::discontinuity_needs_beam_jump (the default; not in paper 002)
-// the range must also jump by that much between two neighbouring beams of the two sectors: a
-// wall seen aslant steps the sectors' radii, nearest return by nearest return, by more than the
-// threshold with no gap in it (a 2 m corridor's walls, seen from inside it), and the point such a
-// step makes lies on the wall, where no later safe region can cover it, so only flying there
-// removes it (README, Exploration).
+// one of the two sectors must also hold an end of a range jump by that much between two
+// consecutive beams: a wall seen aslant steps the sectors' radii, nearest return by nearest
+// return, by more than the threshold with no gap in it (a 2 m corridor's walls, seen from inside
+// it), and the point such a step makes lies on the wall, where no later safe region can cover
+// it, so only flying there removes it (README, Exploration). For the jumps a kNoReturn beam
+// reads as the scan's max_range_mm (as 65.535 m when that is below kMinValidRangeMm), and
+// kTooNear, kDropout and kDeflected beams are stepped over. The test is per sector: a far
+// sector along a long wall, where neighbouring beams of a fine laser (the UTM-30LX's 0.25
+// degrees) already differ by more than the threshold, still passes.
 //
 // For motion the safe region is eroded by the vehicle's clearance rho (Freda and Oriolo account
 // for the robot's size the same way): every sector holds kRaysPerSector evenly spaced rays, and a
