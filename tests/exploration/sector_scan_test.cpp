@@ -107,6 +107,44 @@ TEST_F(SectorTest, AWallSeenAslantIsNoDiscontinuity) {
   }
 }
 
+// Beams that say nothing of their direction (dropouts, deflected beams) are stepped over when
+// looking for a jump: dropouts along the corridor's walls make no jump of their own, and a
+// dropout on the doorway's edge beam leaves the jump across it (and the door's frontiers).
+TEST_F(SectorTest, BeamsWithoutAReturnAreSteppedOverForJumps) {
+  SegmentWorld corridor;
+  corridor.add(-3.0, -1.0, 12.0, -1.0);
+  corridor.add(-3.0, 1.0, 12.0, 1.0);
+  corridor.add(12.0, -1.0, 12.0, 1.0);
+  LaserScan scan = corridor.scan(urg, 0.0, 0.5, 0.0);
+  for (std::size_t i = 0; i < scan.beam_count; i += 7)
+    scan.range_mm[i] = i % 2 == 0 ? range_code::kDropout : range_code::kDeflected;
+  ASSERT_EQ(sectors->build(scan, params), Status::kOk);
+  EXPECT_EQ(count_kind(*sectors, FrontierKind::kLeft) + count_kind(*sectors, FrontierKind::kRight), 0);
+
+  SegmentWorld door;  // DoorwayGivesDiscontinuityFrontiersOnTheFarSide's scene
+  door.add(-1.0, -1.2, -1.0, 1.2);
+  door.add(-1.0, -1.2, 1.0, -1.2);
+  door.add(-1.0, 1.2, 1.0, 1.2);
+  door.add(1.0, -3.0, 1.0, -0.7);
+  door.add(1.0, 0.7, 1.0, 3.0);
+  door.add(1.0, -3.0, 3.0, -3.0);
+  door.add(1.0, 3.0, 3.0, 3.0);
+  door.add(3.0, -3.0, 3.0, 3.0);
+  scan = door.scan(urg, 0, 0, 0);
+  int edges = 0;
+  for (std::size_t i = 1; i < scan.beam_count; ++i) {
+    if (std::abs(int{scan.range_mm[i]} - int{scan.range_mm[i - 1]}) > 1000) {
+      scan.range_mm[i] = range_code::kDropout;  // the first beam past each jamb
+      ++edges;
+      ++i;
+    }
+  }
+  ASSERT_EQ(edges, 2);
+  ASSERT_EQ(sectors->build(scan, params), Status::kOk);
+  EXPECT_EQ(count_kind(*sectors, FrontierKind::kLeft), 1);
+  EXPECT_EQ(count_kind(*sectors, FrontierKind::kRight), 1);
+}
+
 TEST_F(SectorTest, SmallStepsAreNotDiscontinuities) {
   SegmentWorld w;
   w.add(-1.0, -1.2, -1.0, 1.2);
