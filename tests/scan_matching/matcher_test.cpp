@@ -47,6 +47,29 @@ TEST(ScanMatcher, HoverKeepsTheMapAndDoesNotDrift) {
   EXPECT_EQ(r.m->local_map().generation(), gen);
 }
 
+// Along a corridor every match is degenerate, with its likely region running off the slice, and
+// the scans fit a map that may hold only a slice of the corridor seen through a door: such a
+// match adds a key scan once every Params::degenerate_key_interval_s (the vehicle: 1 s), even
+// while hovering, where the overlap alone never would. 0 turns the rule off.
+TEST(ScanMatcher, DegenerateCorridorMatchesAddAKeyScanOncePerInterval) {
+  const std::vector<test::Wall> corridor{{-60, -1, 60, -1}, {-60, 1, 60, 1}};
+  for (float interval : {1.0f, 0.0f}) {
+    Params p;
+    p.degenerate_key_interval_s = interval;
+    Rig r(p);
+    ASSERT_TRUE(r.m->process(test::cast_scan({0, 0.3f, 0}, corridor, 1081, 4.712f, at(0))).ok());
+    int keys = 0, degenerate = 0;
+    for (int i = 1; i <= 100; ++i) {  // 2.5 s at 40 Hz
+      const ScanMatch s = r.m->process(test::cast_scan({0, 0.3f, 0}, corridor, 1081, 4.712f, at(i)));
+      ASSERT_TRUE(s.ok()) << i;
+      keys += (s.measurement.flags & match_flag::kKeyScan) != 0;
+      degenerate += (s.measurement.flags & match_flag::kDegenerate) != 0;
+    }
+    EXPECT_EQ(degenerate, 100) << interval;
+    EXPECT_EQ(keys, interval > 0 ? 2 : 0) << interval;
+  }
+}
+
 // Flying 1 m/s through the room: the pose follows within a few millimetres, no allocation.
 TEST(ScanMatcher, TracksMotionWithoutAllocating) {
   Params p;

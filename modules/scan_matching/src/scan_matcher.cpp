@@ -156,6 +156,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     key_.restart = false;
     (void)local_.submit(key_);
     remember_key(initial_, true);
+    last_key_stamp_ = scan.stamp;
     if (synchronous_) (void)local_.rebuild();
     started_ = true;
     last_pose_ = prev_pose_ = initial_;
@@ -304,6 +305,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
       if (local_.submit(key_)) {
         m.flags |= kKeyScan | kMapRestarted;
         remember_key(pred, true);
+        last_key_stamp_ = scan.stamp;
         last_fit_stamp_ = scan.stamp;  // the rebuilt map gets as long again to fit
         if (synchronous_) (void)local_.rebuild();
       }
@@ -382,12 +384,15 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   out.axis_ratio = ce.axis_ratio;
 
   last_fit_stamp_ = scan.stamp;
-  if (out.overlap < params_.min_overlap || off_centre || far_from_keys) {
+  const bool map_says_too_little = ce.degenerate && ce.truncated && params_.degenerate_key_interval_s > 0 &&
+                                   (scan.stamp - last_key_stamp_).seconds() >= static_cast<double>(params_.degenerate_key_interval_s);
+  if (out.overlap < params_.min_overlap || off_centre || far_from_keys || map_says_too_little) {
     key_.pose = pose;
     key_.restart = false;
     if (local_.submit(key_)) {
       m.flags |= kKeyScan;
       remember_key(pose, false);
+      last_key_stamp_ = scan.stamp;
     }
     if (synchronous_) (void)local_.rebuild();
   }

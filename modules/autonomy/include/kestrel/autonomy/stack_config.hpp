@@ -39,6 +39,11 @@ inline scan_matching::Params vehicle_matcher_params() {
   // behind on average; joined, 2 cm ahead).
   p.join_gap_factor = 8.0f;
   p.join_max_m = 1.0f;
+  // A corridor entered from a room: the local map may hold only the slice of it seen through
+  // the door, and every scan along the corridor fits that slice (gt-building, UTM-30LX seed
+  // 26: the match stayed within the slice while the vehicle flew 12 m west). A degenerate
+  // match adds a key scan once a second, so the map takes in the corridor's ends and doors.
+  p.degenerate_key_interval_s = 1.0f;
   return p;
 }
 

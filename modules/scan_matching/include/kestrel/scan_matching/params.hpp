@@ -68,6 +68,11 @@ struct Params {
   uint8_t cov_half_window = 12;     // translation slice half-width, cells
   uint8_t cov_theta_steps = 8;      // rotation curve half-width, steps
   float degenerate_ratio = 25.0f;   // eigenvalue ratio that flags a degenerate geometry
+  // A degenerate match whose likely region runs off the slice (a corridor) adds a key scan when
+  // the newest is at least this old: the local map may hold only a slice of the corridor,
+  // seen through a door, which every scan along it fits as well as anywhere, so the overlap
+  // never asks for one. 0: never (the default; the vehicle's profile uses 1 s).
+  float degenerate_key_interval_s = 0.0f;
   bool subcell_refine = true;       // parabolic peak interpolation on the slice and curve
 };
 

@@ -99,6 +99,7 @@ class ScanMatcher {
   Pose2 last_pose_, prev_pose_;
   TimeUs last_stamp_, prev_stamp_;
   TimeUs last_fit_stamp_;  // newest scan that fitted the map, started it or restarted it
+  TimeUs last_key_stamp_;  // newest scan submitted as a key scan
   // Where the key scans submitted since the map (re)started were taken, newest first; the
   // radius is set per scan from the laser's reach.
   static_assert(kMaxKeyframes <= kMaxSeenDiscs, "every key scan has its disc");
