@@ -15,7 +15,9 @@
 // reads as the scan's max_range_mm (as 65.535 m when that is below kMinValidRangeMm), and
 // kTooNear, kDropout and kDeflected beams are stepped over. The test is per sector: a far
 // sector along a long wall, where neighbouring beams of a fine laser (the UTM-30LX's 0.25
-// degrees) already differ by more than the threshold, still passes.
+// degrees) already differ by more than the threshold, still passes (counting only jumps whose
+// nearer end is within R_p closes that, and was flown: fewer UTM-30LX flights entered every
+// room, their trees running out of frontiers; modules/exploration/README.md).
 //
 // For motion the safe region is eroded by the vehicle's clearance rho (Freda and Oriolo account
 // for the robot's size the same way): every sector holds kRaysPerSector evenly spaced rays, and a
