@@ -114,6 +114,14 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_beam_jumps", "off"}}}, jumps),
             "");
   EXPECT_FALSE(jumps.stack.explorer.srt.discontinuity_needs_beam_jump);
+  // The scan matcher's key scan once per interval along a corridor: off by default, any mission.
+  FlightOptions corridor;
+  EXPECT_EQ(corridor.stack.matcher.degenerate_key_interval_s, 0.0f);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kHover, sim::MissionOptions{{{"corridor_keys_s", "1"}}}, corridor),
+            "");
+  EXPECT_EQ(corridor.stack.matcher.degenerate_key_interval_s, 1.0f);
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, sim::MissionOptions{{{"corridor_keys_s", "-1"}}}, corridor),
+            "corridor_keys_s: '-1' is not a time in [0, 60] s");
   // Which draws are steered: after a restart by default, any of the four by name.
   FlightOptions steer;
   EXPECT_EQ(steer.stack.explorer.srt.steer, exploration::SteerUnflown::kAfterRestart);

@@ -196,6 +196,10 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       // that clears what it cannot see (iarc-arena's 1.0 m stair railing) and still sees the rest.
       if (!parse_double(value, d) || d < 0.3 || d > 3.0) return "altitude_m: '" + value + "' is not a height in [0.3, 3] m";
       out.stack.mission.takeoff_altitude_m = static_cast<float>(d);
+    } else if (key == "corridor_keys_s") {
+      // The scan matcher's degenerate_key_interval_s: off by default (README, Exploration).
+      if (!parse_double(value, d) || d < 0 || d > 60) return "corridor_keys_s: '" + value + "' is not a time in [0, 60] s";
+      out.stack.matcher.degenerate_key_interval_s = static_cast<float>(d);
     } else if (key == "delay_s") {
       if (!parse_double(value, d) || d < 0 || d > 2) return "delay_s: '" + value + "' is not a delay in [0, 2] s";
       out.delay_s = d;

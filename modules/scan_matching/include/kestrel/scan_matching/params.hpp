@@ -71,7 +71,8 @@ struct Params {
   // A degenerate match whose likely region runs off the slice (a corridor) adds a key scan when
   // the newest is at least this old: the local map may hold only a slice of the corridor,
   // seen through a door, which every scan along it fits as well as anywhere, so the overlap
-  // never asks for one. 0: never (the default; the vehicle's profile uses 1 s).
+  // rarely asks for one. 0: never (the default, also the vehicle's). The price: a vehicle
+  // hovering in a featureless corridor takes in its error along it once a second.
   float degenerate_key_interval_s = 0.0f;
   bool subcell_refine = true;       // parabolic peak interpolation on the slice and curve
 };
