@@ -22,6 +22,30 @@ int count_kind(const SectorScan& s, FrontierKind k) {
   return n;
 }
 
+// A small room with a 1.4 m doorway 1 m ahead of the vehicle; behind it a room whose far wall is
+// 3 m away.
+SegmentWorld doorway_scene() {
+  SegmentWorld w;
+  w.add(-1.0, -1.2, -1.0, 1.2);  // the small room the vehicle is in
+  w.add(-1.0, -1.2, 1.0, -1.2);
+  w.add(-1.0, 1.2, 1.0, 1.2);
+  w.add(1.0, -3.0, 1.0, -0.7);  // its front wall with the doorway, shared with the next room
+  w.add(1.0, 0.7, 1.0, 3.0);
+  w.add(1.0, -3.0, 3.0, -3.0);  // the next room
+  w.add(1.0, 3.0, 3.0, 3.0);
+  w.add(3.0, -3.0, 3.0, 3.0);
+  return w;
+}
+
+// A 2 m corridor closed 12 m ahead, its walls seen aslant from inside.
+SegmentWorld corridor_scene() {
+  SegmentWorld w;
+  w.add(-3.0, -1.0, 12.0, -1.0);
+  w.add(-3.0, 1.0, 12.0, 1.0);
+  w.add(12.0, -1.0, 12.0, 1.0);
+  return w;
+}
+
 class SectorTest : public ::testing::Test {
  protected:
   std::unique_ptr<SectorScan> sectors = std::make_unique<SectorScan>();
@@ -61,17 +85,7 @@ TEST_F(SectorTest, FullyEnclosedRoomHasNoFrontier) {
 }
 
 TEST_F(SectorTest, DoorwayGivesDiscontinuityFrontiersOnTheFarSide) {
-  // A wall 1 m ahead with a 1.4 m doorway; behind it a room whose far wall is 3 m away.
-  SegmentWorld w;
-  w.add(-1.0, -1.2, -1.0, 1.2);  // the small room the vehicle is in
-  w.add(-1.0, -1.2, 1.0, -1.2);
-  w.add(-1.0, 1.2, 1.0, 1.2);
-  w.add(1.0, -3.0, 1.0, -0.7);  // its front wall with the doorway, shared with the next room
-  w.add(1.0, 0.7, 1.0, 3.0);
-  w.add(1.0, -3.0, 3.0, -3.0);  // the next room
-  w.add(1.0, 3.0, 3.0, 3.0);
-  w.add(3.0, -3.0, 3.0, 3.0);
-  ASSERT_EQ(sectors->build(w.scan(urg, 0, 0, 0), params), Status::kOk);
+  ASSERT_EQ(sectors->build(doorway_scene().scan(urg, 0, 0, 0), params), Status::kOk);
   EXPECT_EQ(count_kind(*sectors, FrontierKind::kMid), 0);  // the far wall is within R_p
   ASSERT_EQ(count_kind(*sectors, FrontierKind::kRight), 1);
   ASSERT_EQ(count_kind(*sectors, FrontierKind::kLeft), 1);
@@ -90,10 +104,7 @@ TEST_F(SectorTest, DoorwayGivesDiscontinuityFrontiersOnTheFarSide) {
 // make lie on the walls, where no later safe region covers them. The range never jumps between
 // neighbouring beams there, so by default they are no frontiers (paper 002's radii alone: some).
 TEST_F(SectorTest, AWallSeenAslantIsNoDiscontinuity) {
-  SegmentWorld corridor;
-  corridor.add(-3.0, -1.0, 12.0, -1.0);
-  corridor.add(-3.0, 1.0, 12.0, 1.0);
-  corridor.add(12.0, -1.0, 12.0, 1.0);
+  const SegmentWorld corridor = corridor_scene();
   for (double heading : {0.0, 0.3, -0.5}) {
     const LaserScan scan = corridor.scan(urg, 0.0, 0.5, heading);
     ASSERT_EQ(sectors->build(scan, params), Status::kOk);
@@ -111,26 +122,14 @@ TEST_F(SectorTest, AWallSeenAslantIsNoDiscontinuity) {
 // looking for a jump: dropouts along the corridor's walls make no jump of their own, and a
 // dropout on the doorway's edge beam leaves the jump across it (and the door's frontiers).
 TEST_F(SectorTest, BeamsWithoutAReturnAreSteppedOverForJumps) {
-  SegmentWorld corridor;
-  corridor.add(-3.0, -1.0, 12.0, -1.0);
-  corridor.add(-3.0, 1.0, 12.0, 1.0);
-  corridor.add(12.0, -1.0, 12.0, 1.0);
+  const SegmentWorld corridor = corridor_scene();
   LaserScan scan = corridor.scan(urg, 0.0, 0.5, 0.0);
   for (std::size_t i = 0; i < scan.beam_count; i += 7)
     scan.range_mm[i] = i % 2 == 0 ? range_code::kDropout : range_code::kDeflected;
   ASSERT_EQ(sectors->build(scan, params), Status::kOk);
   EXPECT_EQ(count_kind(*sectors, FrontierKind::kLeft) + count_kind(*sectors, FrontierKind::kRight), 0);
 
-  SegmentWorld door;  // DoorwayGivesDiscontinuityFrontiersOnTheFarSide's scene
-  door.add(-1.0, -1.2, -1.0, 1.2);
-  door.add(-1.0, -1.2, 1.0, -1.2);
-  door.add(-1.0, 1.2, 1.0, 1.2);
-  door.add(1.0, -3.0, 1.0, -0.7);
-  door.add(1.0, 0.7, 1.0, 3.0);
-  door.add(1.0, -3.0, 3.0, -3.0);
-  door.add(1.0, 3.0, 3.0, 3.0);
-  door.add(3.0, -3.0, 3.0, 3.0);
-  scan = door.scan(urg, 0, 0, 0);
+  scan = doorway_scene().scan(urg, 0, 0, 0);
   int edges = 0;
   for (std::size_t i = 1; i < scan.beam_count; ++i) {
     if (std::abs(int{scan.range_mm[i]} - int{scan.range_mm[i - 1]}) > 1000) {

@@ -50,8 +50,9 @@ TEST(ScanMatcher, HoverKeepsTheMapAndDoesNotDrift) {
 
 // Along a corridor every match is degenerate, with its likely region running off the slice, and
 // the scans fit a map that may hold only a slice of the corridor seen through a door: such a
-// match adds a key scan once every Params::degenerate_key_interval_s (the vehicle: 1 s), even
-// while hovering, where the overlap alone never would. 0 turns the rule off.
+// match adds a key scan once every Params::degenerate_key_interval_s (off by default, also on
+// the vehicle; kestrel-sim --mission-arg corridor_keys_s=1), even while hovering, where the
+// overlap alone never would. 0 turns the rule off.
 TEST(ScanMatcher, DegenerateCorridorMatchesAddAKeyScanOncePerInterval) {
   const std::vector<test::Wall> corridor{{-60, -1, 60, -1}, {-60, 1, 60, 1}};
   for (float interval : {1.0f, 0.0f}) {

@@ -384,9 +384,11 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   out.axis_ratio = ce.axis_ratio;
 
   last_fit_stamp_ = scan.stamp;
-  const double since_key_s = (scan.stamp - last_key_stamp_).seconds();
-  const bool map_says_too_little = ce.degenerate && ce.truncated && params_.degenerate_key_interval_s > 0 &&
-                                   since_key_s >= static_cast<double>(params_.degenerate_key_interval_s);
+  // The time since the newest key scan is only worked out for a corridor match (soft float on
+  // the Verdex).
+  const bool map_says_too_little =
+      ce.degenerate && ce.truncated && params_.degenerate_key_interval_s > 0 &&
+      (scan.stamp - last_key_stamp_).seconds() >= static_cast<double>(params_.degenerate_key_interval_s);
   if (out.overlap < params_.min_overlap || off_centre || far_from_keys || map_says_too_little) {
     key_.pose = pose;
     key_.restart = false;
