@@ -50,27 +50,81 @@ TEST(ScanMatcher, HoverKeepsTheMapAndDoesNotDrift) {
 
 // Along a corridor every match is degenerate, with its likely region running off the slice, and
 // the scans fit a map that may hold only a slice of the corridor seen through a door: such a
-// match adds a key scan once every Params::degenerate_key_interval_s (off by default, also on
-// the vehicle; kestrel-sim --mission-arg corridor_keys_s=1), even while hovering, where the
-// overlap alone never would. 0 turns the rule off.
-TEST(ScanMatcher, DegenerateCorridorMatchesAddAKeyScanOncePerInterval) {
+// match adds a key scan once Params::degenerate_key_interval_s has passed since the newest key
+// scan, as long as that one was taken elsewhere (off by default, also on the vehicle;
+// kestrel-sim --mission-arg corridor_keys_s=1). So a vehicle hovering in the corridor takes one,
+// not one a second. A wall closing the corridor on one side joins the map by its overlap, at a
+// match that is still a corridor's (the map does not hold it yet); one closing the other side
+// joins at a match the first pins, which re-arms the rule once the corridor opens again. 0
+// turns the rule off.
+TEST(ScanMatcher, CorridorMatchAddsOneKeyScanUntilOneIsTakenElsewhere) {
   const std::vector<test::Wall> corridor{{-60, -1, 60, -1}, {-60, 1, 60, 1}};
+  std::vector<test::Wall> closed_ahead = corridor;
+  closed_ahead.push_back({0.6f, -1, 0.6f, 1});
+  std::vector<test::Wall> closed_both = closed_ahead;
+  closed_both.push_back({-0.6f, -1, -0.6f, 1});
+  const Pose2 facing_a_wall{0, 0.3f, -1.5708f};  // both ways along the corridor in view
   for (float interval : {1.0f, 0.0f}) {
     Params p;
     p.degenerate_key_interval_s = interval;
     Rig r(p);
     // Started at 1 s, not at zero: the first scan's stamp must count as the newest key scan's.
-    ASSERT_TRUE(r.m->process(test::cast_scan({0, 0.3f, 0}, corridor, 1081, 4.712f, at(40))).ok());
-    int keys = 0, degenerate = 0;
-    for (int i = 41; i <= 140; ++i) {  // 2.5 s at 40 Hz: key scans at 2 s and 3 s
-      const ScanMatch s = r.m->process(test::cast_scan({0, 0.3f, 0}, corridor, 1081, 4.712f, at(i)));
-      ASSERT_TRUE(s.ok()) << i;
-      keys += (s.measurement.flags & match_flag::kKeyScan) != 0;
-      degenerate += (s.measurement.flags & match_flag::kDegenerate) != 0;
-    }
-    EXPECT_EQ(degenerate, 100) << interval;
-    EXPECT_EQ(keys, interval > 0 ? 2 : 0) << interval;
+    ASSERT_TRUE(r.m->process(test::cast_scan(facing_a_wall, corridor, 1081, 4.712f, at(40))).ok());
+    int i = 40;
+    struct Count {
+      int scans = 0, keys = 0, degenerate = 0, degenerate_keys = 0;
+    };
+    const auto fly = [&](const std::vector<test::Wall>& walls, int n) {
+      Count c;
+      for (int k = 0; k < n; ++k) {
+        const ScanMatch s = r.m->process(test::cast_scan(facing_a_wall, walls, 1081, 4.712f, at(++i)));
+        EXPECT_TRUE(s.ok()) << i;
+        const bool key = (s.measurement.flags & match_flag::kKeyScan) != 0;
+        const bool degenerate = (s.measurement.flags & match_flag::kDegenerate) != 0;
+        ++c.scans;
+        c.keys += key;
+        c.degenerate += degenerate;
+        c.degenerate_keys += key && degenerate;
+      }
+      return c;
+    };
+    const Count hover = fly(corridor, 160);  // 4 s at 40 Hz: one key scan, at 2 s
+    EXPECT_EQ(hover.degenerate, hover.scans) << interval;
+    EXPECT_EQ(hover.keys, interval > 0 ? 1 : 0) << interval;
+    const Count ahead = fly(closed_ahead, 10);
+    EXPECT_EQ(ahead.keys, 1) << interval;
+    EXPECT_EQ(ahead.degenerate_keys, 1) << interval;
+    const Count both = fly(closed_both, 10);
+    EXPECT_EQ(both.degenerate, 0) << interval;
+    EXPECT_EQ(both.keys, 1) << interval;
+    const Count again = fly(corridor, 100);  // 2.5 s: one more
+    EXPECT_EQ(again.degenerate, again.scans) << interval;
+    EXPECT_EQ(again.keys, interval > 0 ? 1 : 0) << interval;
+    EXPECT_EQ(again.degenerate_keys, again.keys) << interval;
   }
+}
+
+// A corridor closed 1.8 m ahead: every match is degenerate, but its likely region stays inside
+// the slice (the closing wall bounds it, so the match keeps a finite variance along the
+// corridor), and the map holds what the corridor shows: no key scan, however long it hovers.
+TEST(ScanMatcher, DegenerateMatchInsideTheSliceAddsNoKeyScan) {
+  const std::vector<test::Wall> dead_end{{-60, -1, 60, -1}, {-60, 1, 60, 1}, {1.8f, -1, 1.8f, 1}};
+  Params p;
+  p.degenerate_key_interval_s = 1.0f;
+  Rig r(p);
+  ASSERT_TRUE(r.m->process(test::cast_scan({0, 0.3f, 0}, dead_end, 1081, 4.712f, at(40))).ok());
+  int keys = 0, degenerate = 0, bounded = 0;
+  for (int i = 41; i <= 200; ++i) {  // 4 s
+    const ScanMatch s = r.m->process(test::cast_scan({0, 0.3f, 0}, dead_end, 1081, 4.712f, at(i)));
+    ASSERT_TRUE(s.ok()) << i;
+    keys += (s.measurement.flags & match_flag::kKeyScan) != 0;
+    degenerate += (s.measurement.flags & match_flag::kDegenerate) != 0;
+    const float res2 = p.resolution_m * p.resolution_m;
+    bounded += s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * static_cast<float>(kUnboundedVarianceCells2) * res2;
+  }
+  EXPECT_EQ(degenerate, 160);
+  EXPECT_EQ(bounded, 160);  // not truncated: the rule's other half
+  EXPECT_EQ(keys, 0);
 }
 
 // Flying 1 m/s through the room: the pose follows within a few millimetres, no allocation.

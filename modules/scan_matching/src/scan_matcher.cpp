@@ -157,6 +157,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
     (void)local_.submit(key_);
     remember_key(initial_, true);
     last_key_stamp_ = scan.stamp;
+    last_key_at_corridor_match_ = false;
     if (synchronous_) (void)local_.rebuild();
     started_ = true;
     last_pose_ = prev_pose_ = initial_;
@@ -306,6 +307,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
         m.flags |= kKeyScan | kMapRestarted;
         remember_key(pred, true);
         last_key_stamp_ = scan.stamp;
+        last_key_at_corridor_match_ = false;
         last_fit_stamp_ = scan.stamp;  // the rebuilt map gets as long again to fit
         if (synchronous_) (void)local_.rebuild();
       }
@@ -384,10 +386,13 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   out.axis_ratio = ce.axis_ratio;
 
   last_fit_stamp_ = scan.stamp;
-  // The time since the newest key scan is only worked out for a corridor match (soft float on
-  // the Verdex).
+  // A corridor match asks for a key scan only while the newest key scan was taken elsewhere
+  // (entering a corridor from a room): one taken along the corridor already holds what the
+  // corridor shows, and every further one would take in the estimate's error along it again. The
+  // time since it is only worked out for a corridor match (soft float on the Verdex).
+  const bool corridor_match = ce.degenerate && ce.truncated;
   const bool map_says_too_little =
-      ce.degenerate && ce.truncated && params_.degenerate_key_interval_s > 0 &&
+      corridor_match && params_.degenerate_key_interval_s > 0 && !last_key_at_corridor_match_ &&
       (scan.stamp - last_key_stamp_).seconds() >= static_cast<double>(params_.degenerate_key_interval_s);
   if (out.overlap < params_.min_overlap || off_centre || far_from_keys || map_says_too_little) {
     key_.pose = pose;
@@ -396,6 +401,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
       m.flags |= kKeyScan;
       remember_key(pose, false);
       last_key_stamp_ = scan.stamp;
+      last_key_at_corridor_match_ = corridor_match;
     }
     if (synchronous_) (void)local_.rebuild();
   }

@@ -69,10 +69,11 @@ struct Params {
   uint8_t cov_theta_steps = 8;      // rotation curve half-width, steps
   float degenerate_ratio = 25.0f;   // eigenvalue ratio that flags a degenerate geometry
   // A degenerate match whose likely region runs off the slice (a corridor) adds a key scan when
-  // the newest is at least this old: the local map may hold only a slice of the corridor,
-  // seen through a door, which every scan along it fits as well as anywhere, so the overlap
-  // rarely asks for one. 0: never (the default, also the vehicle's). The price: a vehicle
-  // hovering in a featureless corridor takes in its error along it once a second.
+  // the newest is at least this old and was not itself taken at such a match: the local map
+  // may hold only a slice of the corridor, seen through a door, which every scan along it fits
+  // as well as anywhere, so the overlap rarely asks for one. One is enough until a key scan is
+  // taken elsewhere; more would each take in the estimate's error along the corridor (a vehicle
+  // hovering there, once a second). 0: never (the default, also the vehicle's).
   float degenerate_key_interval_s = 0.0f;
   bool subcell_refine = true;       // parabolic peak interpolation on the slice and curve
 };

@@ -100,6 +100,7 @@ class ScanMatcher {
   TimeUs last_stamp_, prev_stamp_;
   TimeUs last_fit_stamp_;  // newest scan that fitted the map, started it or restarted it
   TimeUs last_key_stamp_;  // newest scan submitted as a key scan
+  bool last_key_at_corridor_match_ = false;  // the newest key scan's match was degenerate and truncated
   // Where the key scans submitted since the map (re)started were taken, newest first; the
   // radius is set per scan from the laser's reach.
   static_assert(kMaxKeyframes <= kMaxSeenDiscs, "every key scan has its disc");
