@@ -39,11 +39,11 @@ inline scan_matching::Params vehicle_matcher_params() {
   // behind on average; joined, 2 cm ahead).
   p.join_gap_factor = 8.0f;
   p.join_max_m = 1.0f;
-  // degenerate_key_interval_s stays 0 (off): at 1 s it mends gt-building's corridor, where the
-  // local map could hold only the slice seen through a door (UTM-30LX, 30 minutes: 21 of 30
-  // flights land at home, 11 without), but fewer of those flights enter every room (26, 29
-  // without) and the 1 m/s hallway flight ends further off (README, Exploration).
-  // kestrel-sim: --mission-arg corridor_keys_s=1.
+  // degenerate_key_interval_s stays 0 (off) for now: at 1 s it mends gt-building's corridor,
+  // where the local map could hold only the slice seen through a door (UTM-30LX, 30 minutes,
+  // seeds 1-60: 40 flights land at home, 27 without; 52 enter every room, 53 without), but every
+  // flight the README reports was flown without it, and the 1 m/s hallway flight ends further
+  // off with it (README, Exploration). kestrel-sim: --mission-arg corridor_keys_s=1.
   return p;
 }
 
