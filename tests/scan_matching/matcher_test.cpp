@@ -53,15 +53,15 @@ TEST(ScanMatcher, HoverKeepsTheMapAndDoesNotDrift) {
 // match adds a key scan once Params::degenerate_key_interval_s has passed since the newest key
 // scan, as long as that one was taken elsewhere (off by default, also on the vehicle;
 // kestrel-sim --mission-arg corridor_keys_s=1). So a vehicle hovering in the corridor takes one,
-// not one a second. A wall closing the corridor on one side joins the map by its overlap, at a
-// match that is still a corridor's (the map does not hold it yet); one closing the other side
-// joins at a match the first pins, which re-arms the rule once the corridor opens again. 0
-// turns the rule off.
+// not one a second. A wall closing the corridor to the east joins the map as a key scan taken
+// at a match that is still degenerate (the map does not hold the wall yet), so the reopened
+// corridor gets no further key scan; one closing it to the west joins at a match the first wall
+// pins, which re-arms the rule once the corridor opens again. 0 turns the rule off.
 TEST(ScanMatcher, CorridorMatchAddsOneKeyScanUntilOneIsTakenElsewhere) {
   const std::vector<test::Wall> corridor{{-60, -1, 60, -1}, {-60, 1, 60, 1}};
-  std::vector<test::Wall> closed_ahead = corridor;
-  closed_ahead.push_back({0.6f, -1, 0.6f, 1});
-  std::vector<test::Wall> closed_both = closed_ahead;
+  std::vector<test::Wall> closed_east = corridor;
+  closed_east.push_back({0.6f, -1, 0.6f, 1});
+  std::vector<test::Wall> closed_both = closed_east;
   closed_both.push_back({-0.6f, -1, -0.6f, 1});
   const Pose2 facing_a_wall{0, 0.3f, -1.5708f};  // both ways along the corridor in view
   for (float interval : {1.0f, 0.0f}) {
@@ -91,16 +91,18 @@ TEST(ScanMatcher, CorridorMatchAddsOneKeyScanUntilOneIsTakenElsewhere) {
     const Count hover = fly(corridor, 160);  // 4 s at 40 Hz: one key scan, at 2 s
     EXPECT_EQ(hover.degenerate, hover.scans) << interval;
     EXPECT_EQ(hover.keys, interval > 0 ? 1 : 0) << interval;
-    const Count ahead = fly(closed_ahead, 10);
-    EXPECT_EQ(ahead.keys, 1) << interval;
-    EXPECT_EQ(ahead.degenerate_keys, 1) << interval;
+    const Count east = fly(closed_east, 10);
+    EXPECT_EQ(east.keys, 1) << interval;
+    EXPECT_EQ(east.degenerate_keys, 1) << interval;
+    const Count reopened = fly(corridor, 80);  // 2 s: the newest key scan was a corridor's
+    EXPECT_EQ(reopened.degenerate, reopened.scans) << interval;
+    EXPECT_EQ(reopened.keys, 0) << interval;
     const Count both = fly(closed_both, 10);
     EXPECT_EQ(both.degenerate, 0) << interval;
     EXPECT_EQ(both.keys, 1) << interval;
-    const Count again = fly(corridor, 100);  // 2.5 s: one more
+    const Count again = fly(corridor, 100);  // 2.5 s: one more with the rule on
     EXPECT_EQ(again.degenerate, again.scans) << interval;
     EXPECT_EQ(again.keys, interval > 0 ? 1 : 0) << interval;
-    EXPECT_EQ(again.degenerate_keys, again.keys) << interval;
   }
 }
 
@@ -113,14 +115,14 @@ TEST(ScanMatcher, DegenerateMatchInsideTheSliceAddsNoKeyScan) {
   p.degenerate_key_interval_s = 1.0f;
   Rig r(p);
   ASSERT_TRUE(r.m->process(test::cast_scan({0, 0.3f, 0}, dead_end, 1081, 4.712f, at(40))).ok());
+  const float unbounded_m2 = static_cast<float>(kUnboundedVarianceCells2) * p.resolution_m * p.resolution_m;
   int keys = 0, degenerate = 0, bounded = 0;
   for (int i = 41; i <= 200; ++i) {  // 4 s
     const ScanMatch s = r.m->process(test::cast_scan({0, 0.3f, 0}, dead_end, 1081, 4.712f, at(i)));
     ASSERT_TRUE(s.ok()) << i;
     keys += (s.measurement.flags & match_flag::kKeyScan) != 0;
     degenerate += (s.measurement.flags & match_flag::kDegenerate) != 0;
-    const float res2 = p.resolution_m * p.resolution_m;
-    bounded += s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * static_cast<float>(kUnboundedVarianceCells2) * res2;
+    bounded += s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * unbounded_m2;
   }
   EXPECT_EQ(degenerate, 160);
   EXPECT_EQ(bounded, 160);  // not truncated: the rule's other half

@@ -386,9 +386,11 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   out.axis_ratio = ce.axis_ratio;
 
   last_fit_stamp_ = scan.stamp;
-  // A corridor match asks for a key scan only while the newest key scan was taken elsewhere
-  // (entering a corridor from a room): one taken along the corridor already holds what the
-  // corridor shows, and every further one would take in the estimate's error along it again. The
+  // A corridor match asks for a key scan only while the newest key scan was taken at a match
+  // that was not a corridor's (e.g. entering a corridor from a room): one taken at a corridor
+  // match already holds what the corridor shows, and every further one would take in the
+  // estimate's error along it again. (Any corridor's: turning from one corridor straight into
+  // another, or through a room the map already holds, the rule stays off.) The
   // time since it is only worked out for a corridor match (soft float on the Verdex).
   const bool corridor_match = ce.degenerate && ce.truncated;
   const bool map_says_too_little =
