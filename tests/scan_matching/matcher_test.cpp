@@ -129,6 +129,75 @@ TEST(ScanMatcher, DegenerateMatchInsideTheSliceAddsNoKeyScan) {
   EXPECT_EQ(keys, 0);
 }
 
+// The newest key scan turns the rule off only when it was taken at a corridor match, degenerate
+// and truncated; one taken at a degenerate match that stays inside the slice turns it back on.
+// The vehicle faces a wall of a corridor, both ways along it in view. A door 2.6 m east closes
+// and joins the map at a corridor match (the map does not hold the door yet): the rule is off.
+// Then a door 2 m west closes. Its points are new to the map, so the scan joins it at a match
+// that is still degenerate but bounded, by the east door the map now holds. The west door opens
+// again, then the east one, and the open corridor gets its one key scan 1 s after the west
+// door's. With the flag taken from "degenerate" alone, the rule would stay off and the corridor
+// would get none; no other test takes a key scan at a degenerate match inside the slice.
+TEST(ScanMatcher, KeyScanAtADegenerateMatchInsideTheSliceReArmsTheCorridorRule) {
+  const std::vector<test::Wall> corridor{{-60, -1, 60, -1}, {-60, 1, 60, 1}};
+  std::vector<test::Wall> east_closed = corridor;
+  east_closed.push_back({2.6f, -1, 2.6f, 1});
+  std::vector<test::Wall> both_closed = east_closed;
+  both_closed.push_back({-2.0f, -1, -2.0f, 1});
+  const Pose2 facing_a_wall{0, 0.3f, -1.5708f};  // both ways along the corridor in view
+  Params p;
+  p.degenerate_key_interval_s = 1.0f;
+  Rig r(p);
+  ASSERT_TRUE(r.m->process(test::cast_scan(facing_a_wall, corridor, 1081, 4.712f, at(40))).ok());
+  const float unbounded_m2 = static_cast<float>(kUnboundedVarianceCells2) * p.resolution_m * p.resolution_m;
+  int i = 40;
+  struct Count {
+    int scans = 0, keys = 0, degenerate = 0, bounded = 0;
+    int keys_at_corridor_match = 0, keys_at_bounded_degenerate_match = 0;
+    int last_key = -1;  // at() index of the phase's last key scan, -1: none
+  };
+  const auto fly = [&](const std::vector<test::Wall>& walls, int n) {
+    Count c;
+    for (int k = 0; k < n; ++k) {
+      const ScanMatch s = r.m->process(test::cast_scan(facing_a_wall, walls, 1081, 4.712f, at(++i)));
+      EXPECT_TRUE(s.ok()) << i;
+      const bool key = (s.measurement.flags & match_flag::kKeyScan) != 0;
+      const bool degenerate = (s.measurement.flags & match_flag::kDegenerate) != 0;
+      const bool bounded = s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * unbounded_m2;
+      ++c.scans;
+      c.keys += key;
+      c.degenerate += degenerate;
+      c.bounded += bounded;
+      c.keys_at_corridor_match += key && degenerate && !bounded;
+      c.keys_at_bounded_degenerate_match += key && degenerate && bounded;
+      if (key) c.last_key = i;
+    }
+    return c;
+  };
+  const Count open = fly(corridor, 20);  // 0.5 s: shorter than the interval
+  EXPECT_EQ(open.degenerate, open.scans);
+  EXPECT_EQ(open.bounded, 0);
+  EXPECT_EQ(open.keys, 0);
+  const Count east = fly(east_closed, 20);
+  EXPECT_EQ(east.keys, 1);
+  EXPECT_EQ(east.keys_at_corridor_match, 1);  // the rule is off from here
+  EXPECT_EQ(east.degenerate, east.scans);
+  EXPECT_EQ(east.bounded, east.scans - 1);  // once the map holds the door, it bounds the match
+  const Count west = fly(both_closed, 10);
+  EXPECT_EQ(west.keys, 1);
+  EXPECT_EQ(west.keys_at_bounded_degenerate_match, 1);  // the key scan that re-arms the rule
+  const Count west_open = fly(east_closed, 10);
+  EXPECT_EQ(west_open.degenerate, west_open.scans);
+  EXPECT_EQ(west_open.bounded, west_open.scans);
+  EXPECT_EQ(west_open.keys, 0);
+  const Count reopened = fly(corridor, 100);  // 2.5 s
+  EXPECT_EQ(reopened.degenerate, reopened.scans);
+  EXPECT_EQ(reopened.bounded, 0);
+  EXPECT_EQ(reopened.keys, 1);
+  EXPECT_EQ(reopened.keys_at_corridor_match, 1);
+  EXPECT_EQ(reopened.last_key, west.last_key + 40);  // the interval after it, 1 s at 40 Hz
+}
+
 // Flying 1 m/s through the room: the pose follows within a few millimetres, no allocation.
 TEST(ScanMatcher, TracksMotionWithoutAllocating) {
   Params p;
