@@ -72,7 +72,7 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}, {"approach", "on"}}), h), "");
 }
 
-// The explorer's distances from laser returns (README, Exploration: the same physical margins
+// The explorer's distances from laser returns (modules/exploration/EXPERIMENTS.md, Not done: the same physical margins
 // when the laser sees walls' faces), each to its own parameter.
 TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   sim::MissionOptions margins{{{"wall_target_m", "0.95"}, {"wall_safe_m", "0.6"},

@@ -183,8 +183,9 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       out.stack.explorer.approach.blind_speed_mps = static_cast<float>(d);
     } else if (float* distance = explorer_distance(key, out.stack.explorer);
                distance != nullptr && kind == mission::MissionKind::kExplore) {
-      // The explorer's distances from laser returns (README, Exploration, "Not done": the
-      // same physical margins when the laser sees walls' faces, sim.laser_sees_wall_thickness).
+      // The explorer's distances from laser returns (modules/exploration/EXPERIMENTS.md, "Not
+      // done": the same physical margins when the laser sees walls' faces,
+      // sim.laser_sees_wall_thickness).
       // Their relations (r_safe < r_t, stop <= clearance) are checked when the stack starts.
       if (!parse_double(value, d) || d <= 0 || d > 5) {
         std::string why = key;  // append, not operator+: see parse_keep_outs
@@ -197,7 +198,8 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       if (!parse_double(value, d) || d < 0.3 || d > 3.0) return "altitude_m: '" + value + "' is not a height in [0.3, 3] m";
       out.stack.mission.takeoff_altitude_m = static_cast<float>(d);
     } else if (key == "corridor_keys_s") {
-      // The scan matcher's degenerate_key_interval_s: off by default (README, Exploration).
+      // The scan matcher's degenerate_key_interval_s: off by default (README, Exploration;
+      // modules/exploration/EXPERIMENTS.md).
       if (!parse_double(value, d) || d < 0 || d > 60) return "corridor_keys_s: '" + value + "' is not a time in [0, 60] s";
       out.stack.matcher.degenerate_key_interval_s = static_cast<float>(d);
     } else if (key == "delay_s") {

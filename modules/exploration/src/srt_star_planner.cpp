@@ -657,7 +657,7 @@ bool SrtStarPlanner::close_in_to_choose(TimeUs now) {
   // Closing in to d/2 once per visit keeps them; a vehicle held off the node chooses as it is.
   // Only unguarded (SRT alone, whose position set-points reach the node): flown with the blend
   // in kestrel-sim it gained nothing (gt-building, 30 minutes: every room on 14 of 30 UTM-30LX
-  // flights as without, on 12 of 60 URG-04LX flights against 17; README, Exploration).
+  // flights as without, on 12 of 60 URG-04LX flights against 17; EXPERIMENTS.md).
   const Point2 node = tree_.nodes()[current_].position;
   if (guarded_ || closed_in_on_ == current_ || !off_node(node)) return false;
   closed_in_on_ = current_;

@@ -43,7 +43,8 @@ inline scan_matching::Params vehicle_matcher_params() {
   // where the local map could hold only the slice seen through a door (UTM-30LX, 30 minutes,
   // seeds 1-60: 40 flights land at home, 27 without; 52 enter every room, 53 without), but every
   // flight the README reports was flown without it, and the 1 m/s hallway flight ends further
-  // off with it (README, Exploration). kestrel-sim: --mission-arg corridor_keys_s=1.
+  // off with it (README, Exploration; modules/exploration/EXPERIMENTS.md). kestrel-sim:
+  // --mission-arg corridor_keys_s=1.
   return p;
 }
 

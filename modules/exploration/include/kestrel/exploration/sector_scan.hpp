@@ -11,7 +11,7 @@
 // consecutive beams: a wall seen aslant steps the sectors' radii, nearest return by nearest
 // return, by more than the threshold with no gap in it (a 2 m corridor's walls, seen from inside
 // it), and the point such a step makes lies on the wall, where no later safe region can cover
-// it, so only flying there removes it (README, Exploration). For the jumps a kNoReturn beam
+// it, so only flying there removes it (EXPERIMENTS.md). For the jumps a kNoReturn beam
 // reads as the scan's max_range_mm (as 65.535 m when that is below kMinValidRangeMm), and
 // kTooNear, kDropout and kDeflected beams are stepped over. The test is per sector: a far
 // sector along a long wall, where neighbouring beams of a fine laser (the UTM-30LX's 0.25

@@ -5,7 +5,7 @@
 // After section V's restarts a fresh SRT-Star tree knows only what it sees from where the
 // vehicle is, and its random frontier choice, repeated node by node, keeps the vehicle near
 // there: in gt-building's 30-minute UTM-30LX flights the trees that lost the west rooms lived in
-// the east half (README, Exploration). A frontier's own cell says little (VisitedGrid's
+// the east half (EXPERIMENTS.md, Not done). A frontier's own cell says little (VisitedGrid's
 // prefer_unvisited: a frontier 3.5 m away is unflown in nearly every direction); the cells
 // beyond it do. Counted here: the unflown cells within kReachCells of the node, inside the
 // grid's extent (the bounding box of the cells flown and of the returns the planner widened it
@@ -18,7 +18,7 @@
 // door into an unflown room beside the node, and a fresh tree at gt-building's start went east
 // and left the south-west room for ever (missed on 10 of 30 steered UTM-30LX flights); the
 // URG-04LX's steered flights crossed the corridor again and again (every room on 4 of 30).
-// Weighted: 18 and 21 of 30 (main at 9be8eab; README, Exploration).
+// Weighted: 18 and 21 of 30 (main at 9be8eab; EXPERIMENTS.md).
 //
 // No trigonometry per cell: each cell offset's bin and weight are tabled once, at
 // construction. 2.2 KB; a count is 37.4 k instructions on the Verdex (exploration/unflown_count;

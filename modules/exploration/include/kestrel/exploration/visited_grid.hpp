@@ -3,7 +3,7 @@
 // V's time limit erases the tree and the new root knows nothing of the rooms already explored:
 // its random frontier choice sends the vehicle back through them as often as on into rooms it
 // has never entered, and over 30 minutes that choice is what decides whether the last rooms
-// are reached (README, Exploration). With this memory the planner draws first among the
+// are reached (EXPERIMENTS.md, Not done). With this memory the planner draws first among the
 // frontiers that lie where the vehicle has not been (SrtParams::prefer_unvisited).
 //
 // kSide x kSide cells of kCellM, centred on the first pose marked (64 m x 64 m: every built-in
