@@ -48,6 +48,63 @@ TEST(ScanMatcher, HoverKeepsTheMapAndDoesNotDrift) {
   EXPECT_EQ(r.m->local_map().generation(), gen);
 }
 
+// A vehicle holding still at 40 Hz while the walls around it change, phase by phase: what each
+// phase's matches were, and at which of them key scans were taken. A match is "bounded" when its
+// variance is finite, its likely region inside the covariance slice; a degenerate match that is
+// not bounded is a corridor match, the one Params::degenerate_key_interval_s acts on.
+struct PhaseCount {
+  int scans = 0, keys = 0, degenerate = 0, bounded = 0;
+  int keys_at_corridor_match = 0, keys_at_bounded_degenerate_match = 0;
+  int last_key = -1;  // at() index of the phase's last key scan, -1: none
+  int degenerate_keys() const { return keys_at_corridor_match + keys_at_bounded_degenerate_match; }
+};
+
+class StillVehicle {
+ public:
+  // The first scan at 1 s, not at zero: its stamp must count as the newest key scan's.
+  StillVehicle(const Params& p, const Pose2& pose, const std::vector<test::Wall>& first_view)
+      : rig_(p),
+        pose_(pose),
+        unbounded_m2_(static_cast<float>(kUnboundedVarianceCells2) * p.resolution_m * p.resolution_m),
+        first_ok_(rig_.m->process(test::cast_scan(pose, first_view, 1081, 4.712f, at(index_))).ok()) {}
+
+  bool first_ok() const { return first_ok_; }
+
+  PhaseCount fly(const std::vector<test::Wall>& walls, int scans) {
+    PhaseCount c;
+    for (int k = 0; k < scans; ++k) {
+      const ScanMatch s = rig_.m->process(test::cast_scan(pose_, walls, 1081, 4.712f, at(++index_)));
+      EXPECT_TRUE(s.ok()) << index_;
+      const bool key = (s.measurement.flags & match_flag::kKeyScan) != 0;
+      const bool degenerate = (s.measurement.flags & match_flag::kDegenerate) != 0;
+      const bool bounded = s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * unbounded_m2_;
+      ++c.scans;
+      c.keys += key;
+      c.degenerate += degenerate;
+      c.bounded += bounded;
+      c.keys_at_corridor_match += key && degenerate && !bounded;
+      c.keys_at_bounded_degenerate_match += key && degenerate && bounded;
+      if (key) c.last_key = index_;
+    }
+    return c;
+  }
+
+ private:
+  Rig rig_;
+  Pose2 pose_;
+  float unbounded_m2_;
+  int index_ = 40;
+  bool first_ok_;
+};
+
+const std::vector<test::Wall> kCorridor{{-60, -1, 60, -1}, {-60, 1, 60, 1}};
+const Pose2 kFacingACorridorWall{0, 0.3f, -1.5708f};  // both ways along the corridor in view
+
+std::vector<test::Wall> with_door_across(std::vector<test::Wall> walls, float x) {
+  walls.push_back({x, -1, x, 1});
+  return walls;
+}
+
 // Along a corridor every match is degenerate, with its likely region running off the slice, and
 // the scans fit a map that may hold only a slice of the corridor seen through a door: such a
 // match adds a key scan once Params::degenerate_key_interval_s has passed since the newest key
@@ -58,49 +115,26 @@ TEST(ScanMatcher, HoverKeepsTheMapAndDoesNotDrift) {
 // corridor gets no further key scan; one closing it to the west joins at a match the first wall
 // pins, which re-arms the rule once the corridor opens again. 0 turns the rule off.
 TEST(ScanMatcher, CorridorMatchAddsOneKeyScanUntilOneIsTakenElsewhere) {
-  const std::vector<test::Wall> corridor{{-60, -1, 60, -1}, {-60, 1, 60, 1}};
-  std::vector<test::Wall> closed_east = corridor;
-  closed_east.push_back({0.6f, -1, 0.6f, 1});
-  std::vector<test::Wall> closed_both = closed_east;
-  closed_both.push_back({-0.6f, -1, -0.6f, 1});
-  const Pose2 facing_a_wall{0, 0.3f, -1.5708f};  // both ways along the corridor in view
+  const std::vector<test::Wall> closed_east = with_door_across(kCorridor, 0.6f);
+  const std::vector<test::Wall> closed_both = with_door_across(closed_east, -0.6f);
   for (float interval : {1.0f, 0.0f}) {
     Params p;
     p.degenerate_key_interval_s = interval;
-    Rig r(p);
-    // Started at 1 s, not at zero: the first scan's stamp must count as the newest key scan's.
-    ASSERT_TRUE(r.m->process(test::cast_scan(facing_a_wall, corridor, 1081, 4.712f, at(40))).ok());
-    int i = 40;
-    struct Count {
-      int scans = 0, keys = 0, degenerate = 0, degenerate_keys = 0;
-    };
-    const auto fly = [&](const std::vector<test::Wall>& walls, int n) {
-      Count c;
-      for (int k = 0; k < n; ++k) {
-        const ScanMatch s = r.m->process(test::cast_scan(facing_a_wall, walls, 1081, 4.712f, at(++i)));
-        EXPECT_TRUE(s.ok()) << i;
-        const bool key = (s.measurement.flags & match_flag::kKeyScan) != 0;
-        const bool degenerate = (s.measurement.flags & match_flag::kDegenerate) != 0;
-        ++c.scans;
-        c.keys += key;
-        c.degenerate += degenerate;
-        c.degenerate_keys += key && degenerate;
-      }
-      return c;
-    };
-    const Count hover = fly(corridor, 160);  // 4 s at 40 Hz: one key scan, at 2 s
+    StillVehicle v(p, kFacingACorridorWall, kCorridor);
+    ASSERT_TRUE(v.first_ok());
+    const PhaseCount hover = v.fly(kCorridor, 160);  // 4 s at 40 Hz: one key scan, at 2 s
     EXPECT_EQ(hover.degenerate, hover.scans) << interval;
     EXPECT_EQ(hover.keys, interval > 0 ? 1 : 0) << interval;
-    const Count east = fly(closed_east, 10);
+    const PhaseCount east = v.fly(closed_east, 10);
     EXPECT_EQ(east.keys, 1) << interval;
-    EXPECT_EQ(east.degenerate_keys, 1) << interval;
-    const Count reopened = fly(corridor, 80);  // 2 s: the newest key scan was a corridor's
+    EXPECT_EQ(east.degenerate_keys(), 1) << interval;
+    const PhaseCount reopened = v.fly(kCorridor, 80);  // 2 s: the newest key scan was a corridor's
     EXPECT_EQ(reopened.degenerate, reopened.scans) << interval;
     EXPECT_EQ(reopened.keys, 0) << interval;
-    const Count both = fly(closed_both, 10);
+    const PhaseCount both = v.fly(closed_both, 10);
     EXPECT_EQ(both.degenerate, 0) << interval;
     EXPECT_EQ(both.keys, 1) << interval;
-    const Count again = fly(corridor, 100);  // 2.5 s: one more with the rule on
+    const PhaseCount again = v.fly(kCorridor, 100);  // 2.5 s: one more with the rule on
     EXPECT_EQ(again.degenerate, again.scans) << interval;
     EXPECT_EQ(again.keys, interval > 0 ? 1 : 0) << interval;
   }
@@ -110,23 +144,15 @@ TEST(ScanMatcher, CorridorMatchAddsOneKeyScanUntilOneIsTakenElsewhere) {
 // the slice (the closing wall bounds it, so the match keeps a finite variance along the
 // corridor), and the map holds what the corridor shows: no key scan, however long it hovers.
 TEST(ScanMatcher, DegenerateMatchInsideTheSliceAddsNoKeyScan) {
-  const std::vector<test::Wall> dead_end{{-60, -1, 60, -1}, {-60, 1, 60, 1}, {1.8f, -1, 1.8f, 1}};
+  const std::vector<test::Wall> dead_end = with_door_across(kCorridor, 1.8f);
   Params p;
   p.degenerate_key_interval_s = 1.0f;
-  Rig r(p);
-  ASSERT_TRUE(r.m->process(test::cast_scan({0, 0.3f, 0}, dead_end, 1081, 4.712f, at(40))).ok());
-  const float unbounded_m2 = static_cast<float>(kUnboundedVarianceCells2) * p.resolution_m * p.resolution_m;
-  int keys = 0, degenerate = 0, bounded = 0;
-  for (int i = 41; i <= 200; ++i) {  // 4 s
-    const ScanMatch s = r.m->process(test::cast_scan({0, 0.3f, 0}, dead_end, 1081, 4.712f, at(i)));
-    ASSERT_TRUE(s.ok()) << i;
-    keys += (s.measurement.flags & match_flag::kKeyScan) != 0;
-    degenerate += (s.measurement.flags & match_flag::kDegenerate) != 0;
-    bounded += s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * unbounded_m2;
-  }
-  EXPECT_EQ(degenerate, 160);
-  EXPECT_EQ(bounded, 160);  // not truncated: the rule's other half
-  EXPECT_EQ(keys, 0);
+  StillVehicle v(p, {0, 0.3f, 0}, dead_end);
+  ASSERT_TRUE(v.first_ok());
+  const PhaseCount hover = v.fly(dead_end, 160);  // 4 s
+  EXPECT_EQ(hover.degenerate, 160);
+  EXPECT_EQ(hover.bounded, 160);  // not truncated: the rule's other half
+  EXPECT_EQ(hover.keys, 0);
 }
 
 // The newest key scan turns the rule off only when it was taken at a corridor match, degenerate
@@ -139,58 +165,29 @@ TEST(ScanMatcher, DegenerateMatchInsideTheSliceAddsNoKeyScan) {
 // door's. With the flag taken from "degenerate" alone, the rule would stay off and the corridor
 // would get none; no other test takes a key scan at a degenerate match inside the slice.
 TEST(ScanMatcher, KeyScanAtADegenerateMatchInsideTheSliceReArmsTheCorridorRule) {
-  const std::vector<test::Wall> corridor{{-60, -1, 60, -1}, {-60, 1, 60, 1}};
-  std::vector<test::Wall> east_closed = corridor;
-  east_closed.push_back({2.6f, -1, 2.6f, 1});
-  std::vector<test::Wall> both_closed = east_closed;
-  both_closed.push_back({-2.0f, -1, -2.0f, 1});
-  const Pose2 facing_a_wall{0, 0.3f, -1.5708f};  // both ways along the corridor in view
+  const std::vector<test::Wall> east_closed = with_door_across(kCorridor, 2.6f);
+  const std::vector<test::Wall> both_closed = with_door_across(east_closed, -2.0f);
   Params p;
   p.degenerate_key_interval_s = 1.0f;
-  Rig r(p);
-  ASSERT_TRUE(r.m->process(test::cast_scan(facing_a_wall, corridor, 1081, 4.712f, at(40))).ok());
-  const float unbounded_m2 = static_cast<float>(kUnboundedVarianceCells2) * p.resolution_m * p.resolution_m;
-  int i = 40;
-  struct Count {
-    int scans = 0, keys = 0, degenerate = 0, bounded = 0;
-    int keys_at_corridor_match = 0, keys_at_bounded_degenerate_match = 0;
-    int last_key = -1;  // at() index of the phase's last key scan, -1: none
-  };
-  const auto fly = [&](const std::vector<test::Wall>& walls, int n) {
-    Count c;
-    for (int k = 0; k < n; ++k) {
-      const ScanMatch s = r.m->process(test::cast_scan(facing_a_wall, walls, 1081, 4.712f, at(++i)));
-      EXPECT_TRUE(s.ok()) << i;
-      const bool key = (s.measurement.flags & match_flag::kKeyScan) != 0;
-      const bool degenerate = (s.measurement.flags & match_flag::kDegenerate) != 0;
-      const bool bounded = s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * unbounded_m2;
-      ++c.scans;
-      c.keys += key;
-      c.degenerate += degenerate;
-      c.bounded += bounded;
-      c.keys_at_corridor_match += key && degenerate && !bounded;
-      c.keys_at_bounded_degenerate_match += key && degenerate && bounded;
-      if (key) c.last_key = i;
-    }
-    return c;
-  };
-  const Count open = fly(corridor, 20);  // 0.5 s: shorter than the interval
+  StillVehicle v(p, kFacingACorridorWall, kCorridor);
+  ASSERT_TRUE(v.first_ok());
+  const PhaseCount open = v.fly(kCorridor, 20);  // 0.5 s: shorter than the interval
   EXPECT_EQ(open.degenerate, open.scans);
   EXPECT_EQ(open.bounded, 0);
   EXPECT_EQ(open.keys, 0);
-  const Count east = fly(east_closed, 20);
+  const PhaseCount east = v.fly(east_closed, 20);
   EXPECT_EQ(east.keys, 1);
   EXPECT_EQ(east.keys_at_corridor_match, 1);  // the rule is off from here
   EXPECT_EQ(east.degenerate, east.scans);
   EXPECT_EQ(east.bounded, east.scans - 1);  // once the map holds the door, it bounds the match
-  const Count west = fly(both_closed, 10);
+  const PhaseCount west = v.fly(both_closed, 10);
   EXPECT_EQ(west.keys, 1);
   EXPECT_EQ(west.keys_at_bounded_degenerate_match, 1);  // the key scan that re-arms the rule
-  const Count west_open = fly(east_closed, 10);
+  const PhaseCount west_open = v.fly(east_closed, 10);
   EXPECT_EQ(west_open.degenerate, west_open.scans);
   EXPECT_EQ(west_open.bounded, west_open.scans);
   EXPECT_EQ(west_open.keys, 0);
-  const Count reopened = fly(corridor, 100);  // 2.5 s
+  const PhaseCount reopened = v.fly(kCorridor, 100);  // 2.5 s
   EXPECT_EQ(reopened.degenerate, reopened.scans);
   EXPECT_EQ(reopened.bounded, 0);
   EXPECT_EQ(reopened.keys, 1);
