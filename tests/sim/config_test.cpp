@@ -89,6 +89,14 @@ TEST(ConfigFile, ShippedExperimentConfigsApply) {
   EXPECT_EQ(c.laser_walls(), WallSurfaces::kCentreLines);
   ASSERT_EQ(c.apply(thick), "");
   EXPECT_EQ(c.laser_walls(), WallSurfaces::kBoxOutlines);
+
+  ConfigFile heavy;
+  ASSERT_EQ(heavy.load(dir + "heavy_vehicle.cfg"), "");
+  SimConfig d;
+  ASSERT_EQ(d.apply(heavy), "");
+  EXPECT_NEAR(d.vehicle.k_thrust * 0.6 + d.vehicle.b_thrust, 0.0, 1e-9);  // hovers at 0.6
+  EXPECT_EQ(d.vehicle.attitude_tau_s, 0.12);
+  EXPECT_EQ(d.vehicle.k_pitch, SimConfig{}.vehicle.k_pitch);  // tilt still gives g per radian
 }
 
 }  // namespace
