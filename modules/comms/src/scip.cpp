@@ -110,7 +110,13 @@ bool ScipDecoder::end_line() {
         return false;
       }
       uint32_t t = 0;
-      for (int i = 0; i < 4; ++i) t = (t << 6) | static_cast<uint32_t>(l[i] - 0x30);
+      for (int i = 0; i < 4; ++i) {
+        if (l[i] < 0x30 || l[i] > 0x6F) {  // a sum can hold over characters outside the encoding
+          fail(format_errors_);
+          return false;
+        }
+        t = (t << 6) | static_cast<uint32_t>(l[i] - 0x30);
+      }
       building_.sensor_time_ms = t;
       stage_ = Stage::kData;
       return false;
