@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 
 #include "log_test_files.hpp"
@@ -95,6 +96,58 @@ TEST(MinesReader, BadLinesGiveStatusAndLineNumber) {
     EXPECT_EQ(s, c.status) << c.name << ": " << reader.error().reason;
     EXPECT_EQ(reader.error().line, c.line) << c.name;
   }
+}
+
+TEST(MinesReader, RandomlyMutatedLogsNeverCrash) {
+  const std::string base = mines_line(361431443) + mines_line(361528520, false) + mines_line(361625000);
+  std::mt19937 rng(13);
+  const char alphabet[] = "0123456789 -+.xe\n\t#\r";
+  TempLogFile file("mutated.dat");
+  int errors = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::string text = base;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t pos = rng() % text.size();
+      const char c = alphabet[rng() % (sizeof alphabet - 1)];
+      switch (rng() % 3) {
+        case 0: text[pos] = c; break;
+        case 1: text.erase(pos, 1); break;
+        default: text.insert(pos, 1, c); break;
+      }
+    }
+    file.write(text);
+    MinesReader reader;
+    ASSERT_EQ(reader.open(file.c_str()), Status::kOk);
+    LogRecord rec;
+    Status s;
+    int records = 0;
+    long long last_us = 0;
+    while (ok(s = reader.next(rec)) && records < 100) {
+      ++records;
+      ASSERT_EQ(rec.kind, LogRecord::Kind::kLaser);
+      ASSERT_EQ(rec.scan.beam_count, MinesReader::kBeams);
+      for (int i = 0; i < MinesReader::kBeams; ++i) ASSERT_LE(rec.scan.range_mm[i], rec.scan.max_range_mm);
+      if (records > 1) {
+        ASSERT_GE(rec.scan.stamp.us, last_us);  // TimeOrder::kError: never out of order
+      }
+      last_us = rec.scan.stamp.us;
+    }
+    // A line has 706 or 707 fields, so an inserted newline cannot make a fourth record.
+    ASSERT_LE(records, 3);
+    if (s != Status::kNoData) {
+      ++errors;
+      EXPECT_GT(reader.error().line, 0u);
+      EXPECT_NE(reader.error().reason[0], '\0');
+    } else {
+      // A clean end: every line was a record, a comment or blank.
+      EXPECT_EQ(reader.stats().lines, reader.stats().laser_records + reader.stats().skipped_lines);
+      EXPECT_EQ(reader.stats().laser_records, static_cast<uint64_t>(records));
+    }
+  }
+  // Most mutations must be caught; the rest changed a number into another valid number, or a
+  // separator into another separator.
+  EXPECT_GT(errors, 110);
 }
 
 }  // namespace
