@@ -1,5 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+#include <string>
+
+#include "kestrel/sim/free_space_map.hpp"
+#include "kestrel/sim/ray_caster.hpp"
 #include "kestrel/sim/world_parser.hpp"
 
 namespace kestrel::sim {
@@ -102,6 +110,116 @@ TEST(WorldParser, MissingFileIsAnErrorNamingThePath) {
   const auto r = load_world_file("/nonexistent/dir/x.world");
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("/nonexistent/dir/x.world"), std::string::npos);
+}
+
+// Regression: coordinates were only checked to be finite, so a world with a mistyped 1e12 parsed,
+// and building the free-space map over it threw (a vector beyond max_size(), from an int cast of
+// an overflowing cell count) instead of the file being refused with its line.
+TEST(WorldParser, PointsBeyondTheIndoorExtentAreRejected) {
+  const BadCase cases[] = {
+      {"start 0 0 0 0\nwall 0 0 1e12 0\n", "t.world:2: wall: point (1e+12, 0) lies outside +-500 m"},
+      {"start 0 0 0 0\nwall 0 0 1 0\nwall -600 0 1 0\n", "t.world:3: wall: point"},
+      {"start 0 0 0 0\npillar 0 0 1e9\n", "t.world:2: pillar: point"},
+      {"start 0 0 0 0\nbox 499 0 4 1\n", "t.world:2: box: point"},
+      {"start 0 0 0 0\npoly 0 0 1 0 0 1e300\n", "t.world:2: poly: point"},
+      {"start 0 0 0 0\nwall 0 0 1 0\nroom r 0 0 1 0 0 -501\n", "t.world:3: room: point"},
+      {"start 0 501 0 0\nwall 0 0 1 0\n", "t.world:1: start: point"},
+      {"start 0 0 0 0\nwall_thickness 1e300\nwall 0 0 1 0\n", "t.world:2: wall_thickness must be at most 10 m"},
+  };
+  for (const BadCase& c : cases) {
+    const auto r = parse(c.text);
+    EXPECT_FALSE(r.ok) << c.text;
+    EXPECT_NE(r.error.find(c.expected), std::string::npos) << "got: " << r.error << "\nwanted: " << c.expected;
+  }
+  // The corners of the extent are still a world, and the simulator's grids build over it.
+  const auto r = parse("start -500 -500 0 0\nwall -500 500 500 -500\nwall_thickness 10\n");
+  ASSERT_TRUE(r.ok) << r.error;
+  const FreeSpaceMap map(r.world, 1.0);
+  EXPECT_GT(map.reachable_cells(), 0u);
+}
+
+TEST(WorldParser, RandomlyMutatedWorldsAreRefusedOrSound) {
+  const std::string base =
+      "# a comment\n"
+      "name lab\n"
+      "start 1 2 0.5 90\n"
+      "wall_height 3\n"
+      "wall_thickness 0.2\n"
+      "ceiling 3.1\n"
+      "wall 0 0 10 0   # trailing comment\n"
+      "wall 0 5 10 5 glass\n"
+      "wall 0 0 0 5 z=0:1 railing=0.25\n"
+      "box 5 2.5 2 1 yaw=90 z=0:0.75\n"
+      "pillar 8 2 0.3\n"
+      "poly 1 1 2 1 1.5 2\n"
+      "room a 0 0 10 0 10 5 0 5\n";
+  ASSERT_TRUE(parse_world(base, "t.world").ok);
+  std::mt19937 rng(17);
+  const char alphabet[] = "0123456789 .-+e:=#\n\txnaz";
+  int errors = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::string text = base;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t pos = rng() % text.size();
+      const char c = alphabet[rng() % (sizeof alphabet - 1)];
+      switch (rng() % 3) {
+        case 0: text[pos] = c; break;
+        case 1: text.erase(pos, 1); break;
+        default: text.insert(pos, 1, c); break;
+      }
+    }
+    const auto r = parse_world(text, "t.world");
+    if (!r.ok) {
+      ++errors;
+      // "t.world:LINE: reason", LINE within the text (0 for the whole-world checks).
+      ASSERT_EQ(r.error.rfind("t.world:", 0), 0u) << r.error;
+      const int line = std::atoi(r.error.c_str() + 8);
+      const int lines = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+      EXPECT_GE(line, 0) << r.error;
+      EXPECT_LE(line, lines) << r.error;
+      EXPECT_GT(r.error.size(), r.error.find(": ", 8) + 2) << r.error;
+      continue;
+    }
+    // An accepted world holds what the simulator relies on.
+    const World& w = r.world;
+    auto sound = [](const Eigen::Vector2d& p) {
+      return std::isfinite(p.x()) && std::isfinite(p.y()) && std::fabs(p.x()) <= 500 && std::fabs(p.y()) <= 500;
+    };
+    ASSERT_TRUE(sound({w.start.x, w.start.y}) && std::isfinite(w.start.yaw_rad) && w.start.z >= 0) << text;
+    ASSERT_TRUE(w.wall_thickness_m > 0 && w.wall_thickness_m <= 10) << text;
+    ASSERT_TRUE(w.ceiling_m >= 0 && std::isfinite(w.ceiling_m)) << text;
+    ASSERT_FALSE(w.walls.empty() && w.obstacles.empty()) << text;
+    for (const Wall& wall : w.walls) {
+      ASSERT_TRUE(sound(wall.a) && sound(wall.b) && (wall.a - wall.b).norm() >= 1e-6) << text;
+      ASSERT_LT(wall.z_min, wall.z_max) << text;
+      ASSERT_TRUE(wall.return_probability >= 0 && wall.return_probability <= 1) << text;
+    }
+    for (const Obstacle& o : w.obstacles) {
+      ASSERT_GE(o.polygon.size(), 3u) << text;
+      for (const auto& p : o.polygon) ASSERT_TRUE(sound(p)) << text;
+      ASSERT_GT(polygon_signed_area(o.polygon), 0) << text;  // counter-clockwise
+      ASSERT_LT(o.z_min, o.z_max) << text;
+      ASSERT_TRUE(o.return_probability >= 0 && o.return_probability <= 1) << text;
+    }
+    for (const Room& room : w.rooms) {
+      ASSERT_GE(room.polygon.size(), 3u) << text;
+      for (const auto& p : room.polygon) ASSERT_TRUE(sound(p)) << text;
+    }
+    // And the simulator's grids build over it, and a ray from the start ends.
+    const FreeSpaceMap map(w, 0.5);
+    RayCaster caster(w, 0.5, WallSurfaces::kBoxOutlines);
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * M_PI / 4;
+      const RayHit hit = caster.cast({w.start.x, w.start.y, w.start.z + 0.5}, {std::cos(a), std::sin(a), 0}, 30);
+      if (hit.kind != RayHit::Kind::kNone) {
+        ASSERT_TRUE(hit.range_m >= 0 && hit.range_m <= 30) << text;
+      }
+    }
+  }
+  // Most mutations must be caught; the rest changed a number into another valid number, a comment
+  // or a separator.
+  EXPECT_GT(errors, 230);
 }
 
 }  // namespace

@@ -11,6 +11,22 @@ namespace kestrel::sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// An indoor world lies well within +-this many metres of its origin in x and y. The
+// simulator's grids over the world (free space in 0.1 m cells, the ray caster's segment grid)
+// grow with its extent: a mistyped coordinate such as 1e12 would otherwise overflow their sizes.
+constexpr double kMaxCoordinateM = 500;
+constexpr double kMaxWallThicknessM = 10;
+
+bool outside_extent(const Eigen::Vector2d& p) {
+  return std::fabs(p.x()) > kMaxCoordinateM || std::fabs(p.y()) > kMaxCoordinateM;
+}
+
+std::string extent_error(const std::string& what, const Eigen::Vector2d& p) {
+  std::ostringstream ss;
+  ss << what << ": point (" << p.x() << ", " << p.y() << ") lies outside +-" << kMaxCoordinateM
+     << " m (an indoor world's extent)";
+  return ss.str();
+}
 
 struct Options {
   bool has_z = false;
@@ -149,12 +165,15 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
       if (read_numbers(toks, 1, nums, bad) != 4 || toks.size() != 5)
         return fail("start needs 4 numbers: X Y Z YAW_DEG");
       if (nums[2] < 0) return fail("start height Z must not be below the floor");
+      if (outside_extent({nums[0], nums[1]})) return fail(extent_error("start", {nums[0], nums[1]}));
       w.start = {nums[0], nums[1], nums[2], nums[3] * kPi / 180.0};
       have_start = true;
     } else if (kw == "wall_height" || kw == "wall_thickness" || kw == "ceiling") {
       if (read_numbers(toks, 1, nums, bad) != 1 || toks.size() != 2)
         return fail(kw + " needs one number");
       if (nums[0] < 0 || (kw != "ceiling" && nums[0] == 0)) return fail(kw + " must be positive");
+      if (kw == "wall_thickness" && nums[0] > kMaxWallThicknessM)
+        return fail("wall_thickness must be at most 10 m (use a box for a thick obstacle)");
       if (kw == "wall_height") wall_height = nums[0];
       if (kw == "wall_thickness") w.wall_thickness_m = nums[0];
       if (kw == "ceiling") w.ceiling_m = nums[0];
@@ -168,6 +187,8 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
       wall.a = {nums[0], nums[1]};
       wall.b = {nums[2], nums[3]};
       if ((wall.a - wall.b).norm() < 1e-6) return fail("wall has zero length");
+      for (const Eigen::Vector2d& p : {wall.a, wall.b})
+        if (outside_extent(p)) return fail(extent_error("wall", p));
       wall.z_min = opt.has_z ? opt.z_min : 0;
       wall.z_max = opt.has_z ? opt.z_max : wall_height;
       wall.material = opt.material;
@@ -201,6 +222,8 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
                       std::to_string(n) + " numbers");
         for (int k = 0; k < n; k += 2) o.polygon.emplace_back(nums[k], nums[k + 1]);
       }
+      for (const Eigen::Vector2d& p : o.polygon)
+        if (outside_extent(p)) return fail(extent_error(kw, p));
       if (!make_convex_ccw(o.polygon)) return fail(kw + " is not a convex polygon");
       o.z_min = opt.has_z ? opt.z_min : 0;
       o.z_max = opt.has_z ? opt.z_max : wall_height;
@@ -220,6 +243,8 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
       Room room;
       room.name = toks[1];
       for (int k = 0; k < n; k += 2) room.polygon.emplace_back(nums[k], nums[k + 1]);
+      for (const Eigen::Vector2d& p : room.polygon)
+        if (outside_extent(p)) return fail(extent_error("room", p));
       w.rooms.push_back(std::move(room));
     } else {
       return fail("unknown keyword '" + kw + "'");
