@@ -1,5 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+#include <string>
+
 #include "kestrel/sim/sim_config.hpp"
 
 namespace kestrel::sim {
@@ -97,6 +104,121 @@ TEST(ConfigFile, ShippedExperimentConfigsApply) {
   EXPECT_NEAR(d.vehicle.k_thrust * 0.6 + d.vehicle.b_thrust, 0.0, 1e-9);  // hovers at 0.6
   EXPECT_EQ(d.vehicle.attitude_tau_s, 0.12);
   EXPECT_EQ(d.vehicle.k_pitch, SimConfig{}.vehicle.k_pitch);  // tilt still gives g per radian
+}
+
+// What the simulator does with an accepted configuration stays inside the types it converts to:
+// the laser's period and beam interval become int64 microseconds, its angles floats.
+void expect_convertible(const SimConfig& c, const std::string& text) {
+  const double max_us = 9.0e18;
+  EXPECT_LT(c.laser.scan_period_s * 1e6, max_us) << text;
+  EXPECT_LT(c.laser.beam_interval_us, max_us) << text;
+  EXPECT_LT(std::fabs(c.laser.first_angle_rad), FLT_MAX) << text;
+  EXPECT_LT(std::fabs(c.laser.angle_step_rad), FLT_MAX) << text;
+  const hal::LaserGeometry g = c.laser.geometry();
+  EXPECT_EQ(g.beam_count, c.laser.beam_count) << text;
+  EXPECT_LT(g.min_range_mm, g.max_range_mm) << text;
+}
+
+// Regression: the laser's scan period had only a lower bound and its angles none, so a typo such
+// as 1e300 passed validation and then overflowed the int64 microseconds (scan period) or the
+// float (angles) the simulator converts them to.
+TEST(ConfigFile, LaserValuesBeyondTheirTypesAreRefused) {
+  const struct {
+    const char* text;
+    const char* error;
+  } cases[] = {
+      {"laser.scan_period_s = 1e300\n", "laser.scan_period_s must be at most 10"},
+      {"laser.scan_period_s = 11\n", "laser.scan_period_s must be at most 10"},
+      {"laser.first_angle_rad = 1e300\n", "laser angles must lie within [-2 pi, 2 pi]"},
+      {"laser.angle_step_rad = -1e39\n", "laser angles must lie within [-2 pi, 2 pi]"},
+  };
+  for (const auto& c : cases) {
+    ConfigFile f;
+    ASSERT_EQ(f.parse(c.text, "c.cfg"), "");
+    SimConfig cfg;
+    EXPECT_EQ(cfg.apply(f), c.error) << c.text;
+  }
+  ConfigFile slow;
+  ASSERT_EQ(slow.parse("laser.scan_period_s = 10\nlaser.first_angle_rad = -6.28\n", "c.cfg"), "");
+  SimConfig cfg;
+  EXPECT_EQ(cfg.apply(slow), "");
+  expect_convertible(cfg, "slow");
+}
+
+TEST(ConfigFile, RandomlyMutatedConfigsAreRefusedOrApplied) {
+  const std::string base =
+      "# tuning\n"
+      "vehicle.k_thrust = 19.62   # hover at 0.5\n"
+      "vehicle.b_thrust = -9.81\n"
+      "vehicle.attitude_tau_s = 0.08\n"
+      "vehicle.max_tilt_rad = 0.5\n"
+      "vehicle.step_s = 0.001\n"
+      "laser.beam_count = 1081\n"
+      "laser.first_angle_rad = -2.356194490192345\n"
+      "laser.angle_step_rad = 0.004363323129985824\n"
+      "laser.min_range_m = 0.1\n"
+      "laser.max_range_m = 30\n"
+      "laser.scan_period_s = 0.025\n"
+      "laser.beam_interval_us = 17\n"
+      "laser.dropout_probability = 0.002\n"
+      "laser.deflected_beams = 20\n"
+      "imu.rate_hz = 200\n"
+      "imu.accel_noise_density = 0.004\n"
+      "sim.command_delay_s = 0.02\n"
+      "sim.ray_grid_cell_m = 1.0\n";
+  {
+    ConfigFile f;
+    ASSERT_EQ(f.parse(base, "c.cfg"), "");
+    SimConfig cfg;
+    ASSERT_EQ(cfg.apply(f), "");
+  }
+  std::mt19937 rng(19);
+  const char alphabet[] = "0123456789 .-+e=#\n\txnaik_";
+  int errors = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::string text = base;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      std::size_t pos = rng() % text.size();
+      if (trial % 2 == 1) {
+        // Half the trials edit only values (the keys are most of the text): from the '=' on.
+        const std::size_t line_start = text.rfind('\n', pos) == std::string::npos ? 0 : text.rfind('\n', pos) + 1;
+        const std::size_t eq = text.find('=', line_start);
+        const std::size_t line_end = std::min(text.find('\n', line_start), text.size());
+        if (eq < line_end) pos = eq + 1 + rng() % (line_end - eq);
+      }
+      const char c = alphabet[rng() % (sizeof alphabet - 1)];
+      switch (rng() % 3) {
+        case 0: text[pos] = c; break;
+        case 1: text.erase(pos, 1); break;
+        default: text.insert(pos, 1, c); break;
+      }
+    }
+    ConfigFile f;
+    std::string error = f.parse(text, "c.cfg");
+    SimConfig cfg;
+    if (error.empty()) error = cfg.apply(f);
+    if (!error.empty()) {
+      ++errors;
+      // "c.cfg:LINE: reason" for a line's fault, else the rule a value breaks, naming its key.
+      if (error.rfind("c.cfg:", 0) == 0) {
+        const int line = std::atoi(error.c_str() + 6);
+        const int lines = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+        EXPECT_GE(line, 1) << error;
+        EXPECT_LE(line, lines) << error;
+      } else {
+        const bool names_component = error.rfind("vehicle", 0) == 0 || error.rfind("laser", 0) == 0 ||
+                                     error.rfind("imu", 0) == 0 || error.rfind("sim.", 0) == 0;
+        EXPECT_TRUE(names_component) << error;
+      }
+      continue;
+    }
+    ASSERT_EQ(cfg.validate(), "") << text;
+    expect_convertible(cfg, text);
+  }
+  // Most mutations must be caught; the rest changed a number into another acceptable number,
+  // a comment or the spacing.
+  EXPECT_GT(errors, 220);
 }
 
 }  // namespace

@@ -69,6 +69,11 @@ const char* LaserParams::validate() const {
     return "laser ranges must satisfy 0.02 <= min_range_m < max_range_m <= 65";
   if (!(beam_interval_us >= 1) || beam_interval_us != std::floor(beam_interval_us))
     return "laser.beam_interval_us must be a whole number >= 1";
+  // Upper bounds keep the values inside what the simulator converts them to (int64 us, float).
+  if (!(scan_period_s <= 10)) return "laser.scan_period_s must be at most 10";
+  if (!(std::fabs(first_angle_rad) <= 2 * 3.14159265358979323846 &&
+        std::fabs(angle_step_rad) <= 2 * 3.14159265358979323846))
+    return "laser angles must lie within [-2 pi, 2 pi]";
   if (!(scan_period_s * 1e6 >= beam_interval_us * beam_count))
     return "laser.scan_period_s is shorter than the sweep (beam_count * beam_interval_us)";
   if (!(sigma_near_m >= 0 && sigma_far_m >= 0 && sigma_rel >= 0)) return "laser noise must be >= 0";
