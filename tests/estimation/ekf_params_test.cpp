@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <random>
 #include <string>
 
 namespace kestrel::estimation {
@@ -85,6 +88,67 @@ TEST(EkfParams, LoadsAFileAndReportsAMissingOne) {
   ASSERT_EQ(load_ekf_params(path.c_str(), q, err), Status::kOk) << err.message;
   EXPECT_EQ(q.gyro_noise, p.gyro_noise);
   std::remove(path.c_str());
+}
+
+TEST(EkfParams, RandomlyMutatedFilesAreRefusedWholeOrApplied) {
+  // The file as the writer emits it: a comment line of help, unit and range before each key.
+  const EkfParams defaults;
+  EkfParams written = defaults;
+  char buf[params::kMaxParamFileBytes];
+  const auto n = params::write_params(ekf_param_fields(written), "learnt", buf, sizeof(buf));
+  ASSERT_TRUE(n.ok());
+  const std::string base(buf, n.value());
+  std::mt19937 rng(23);
+  const char alphabet[] = "0123456789 .-+e=#\n\r\txnaif_";
+  int errors = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::string text = base;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      std::size_t pos = rng() % text.size();
+      if (trial % 2 == 1) {
+        // Half the trials edit only key lines (comments are most of the text): from the '=' on.
+        const std::size_t line_start = text.rfind('\n', pos) == std::string::npos ? 0 : text.rfind('\n', pos) + 1;
+        const std::size_t line_end = std::min(text.find('\n', line_start), text.size());
+        const std::size_t eq = text.find(" = ", line_start);
+        if (text[line_start] != '#' && eq < line_end) pos = eq + rng() % (line_end - eq);
+      }
+      const char c = alphabet[rng() % (sizeof alphabet - 1)];
+      switch (rng() % 3) {
+        case 0: text[pos] = c; break;
+        case 1: text.erase(pos, 1); break;
+        default: text.insert(pos, 1, c); break;
+      }
+    }
+    EkfParams p = defaults;
+    params::ParamError err;
+    const Status s = params::parse_params(text, ekf_param_fields(p), err);
+    if (s != Status::kOk) {
+      ++errors;
+      const int lines = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+      EXPECT_GE(err.line, 1) << err.message;
+      EXPECT_LE(err.line, lines) << err.message;
+      EXPECT_NE(err.message[0], '\0');
+      EkfParams untouched = defaults;
+      const auto got = ekf_param_fields(p);
+      const auto want = ekf_param_fields(untouched);
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        EXPECT_EQ(*got[i].value, *want[i].value) << "a refused file changed " << got[i].key << ": " << err.message;
+      }
+      continue;
+    }
+    EXPECT_EQ(err.line, 0);
+    // Every value it took is finite and inside its field's range.
+    for (const params::ParamField& f : ekf_param_fields(p)) {
+      EXPECT_TRUE(std::isfinite(*f.value)) << f.key;
+      EXPECT_GE(*f.value, f.min) << f.key;
+      EXPECT_LE(*f.value, f.max) << f.key;
+    }
+    EXPECT_EQ(validate(p), Status::kOk);
+  }
+  // Most mutations must be caught; the rest changed a number into another number in range, a
+  // comment or the spacing.
+  EXPECT_GT(errors, 105);
 }
 
 }  // namespace
