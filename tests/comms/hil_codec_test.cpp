@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cstring>
+#include <random>
+#include <vector>
 
 #include "kestrel/comms/crc16.hpp"
 #include "kestrel/comms/hil_codec.hpp"
@@ -153,6 +155,93 @@ TEST(HilCodec, DecodingAStreamDoesNotAllocate) {
       if (d.push(frame[i]) && decode_payload(d.payload(), d.size(), out) == Status::kOk) ++frames;
   EXPECT_EQ(frames, 20);
   EXPECT_EQ(guard.allocations(), 0u);
+}
+
+// Random replaced, deleted and inserted bytes in valid frames (sync, type, length, payload and CRC
+// alike): the CRC lets through no frame other than the one sent, every damaged frame is counted,
+// and the stream recovers within one maximum frame's worth of bytes.
+TEST(HilCodec, RandomlyMutatedFramesAreCountedAndTheStreamRecovers) {
+  static uint8_t payload[kHilMaxPayload];
+  std::vector<std::vector<uint8_t>> frames;
+  {
+    ImuSample imu;
+    imu.stamp = TimeUs::from_us(42);
+    imu.accel_mps2 = {0.1f, -0.2f, 9.81f};
+    const std::size_t p = encode_payload(imu, payload, sizeof(payload));
+    frames.emplace_back(p + kHilOverhead);
+    ASSERT_EQ(hil_encode(static_cast<uint8_t>(HilType::kImu), payload, p, frames.back().data(), frames.back().size()),
+              frames.back().size());
+    LaserScan scan = make_scan();
+    scan.beam_count = 91;
+    const std::size_t q = encode_payload(scan, payload, sizeof(payload));
+    frames.emplace_back(q + kHilOverhead);
+    ASSERT_EQ(hil_encode(static_cast<uint8_t>(HilType::kLaserScan), payload, q, frames.back().data(),
+                         frames.back().size()),
+              frames.back().size());
+  }
+  const std::vector<uint8_t>& good = frames[0];  // the frame that follows each damaged one
+  // Enough good frames after a damaged one to outlast any length it may claim.
+  const std::size_t followers = (kHilMaxPayload + kHilOverhead) / good.size() + 2;
+  std::mt19937 rng(29);
+  int counted = 0, intact = 0, sync_lost = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::vector<uint8_t>& original = frames[trial % 2];
+    std::vector<uint8_t> bytes = original;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      // Half the edits land in the 5-byte header or the CRC, which a uniform pick would rarely hit.
+      std::size_t pos = rng() % bytes.size();
+      if (rng() % 2 == 0) pos = rng() % 2 == 0 ? rng() % 5 : bytes.size() - 1 - rng() % 2;
+      const uint8_t c = rng() % 4 == 0 ? (rng() % 2 == 0 ? kHilSync0 : kHilSync1) : static_cast<uint8_t>(rng());
+      switch (rng() % 3) {
+        case 0: bytes[pos] = c; break;
+        case 1: bytes.erase(bytes.begin() + static_cast<std::ptrdiff_t>(pos)); break;
+        default: bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(pos), c); break;
+      }
+    }
+    HilDecoder d;
+    std::vector<uint8_t> last;
+    int from_mutated = 0, good_after = 0;
+    bool wrong = false;
+    auto push_all = [&](const std::vector<uint8_t>& in, int& done) {
+      for (uint8_t b : in)
+        if (d.push(b)) {
+          ++done;
+          const std::vector<uint8_t> got(d.payload(), d.payload() + d.size());
+          // A frame that completes is the damaged frame intact, or one of the good frames.
+          const bool is_original = d.type() == original[2] &&
+                                   got == std::vector<uint8_t>(original.begin() + 5, original.end() - 2);
+          const bool is_good = d.type() == good[2] &&
+                               got == std::vector<uint8_t>(good.begin() + 5, good.end() - 2);
+          if (!is_original && !is_good) wrong = true;
+        }
+    };
+    push_all(bytes, from_mutated);
+    for (std::size_t k = 0; k < followers; ++k) push_all(good, good_after);
+    ASSERT_FALSE(wrong) << "trial " << trial << ": a frame other than the ones sent passed the CRC";
+    ASSERT_LE(from_mutated, 1) << "trial " << trial;
+    // Bytes claimed by a damaged length cost at most one maximum frame; the rest decode.
+    EXPECT_GE(static_cast<std::size_t>(good_after), followers - (kHilMaxPayload + kHilOverhead) / good.size() - 1)
+        << "trial " << trial;
+    if (d.crc_errors() + d.length_errors() > 0) {
+      ++counted;
+      continue;
+    }
+    // Nothing counted: no good frame was lost, and the damaged one either survived (bytes inserted
+    // before its sync, say) or lost its sync, so that the decoder never saw a frame start. The
+    // decoder counts frames, not bytes skipped while hunting for a sync.
+    EXPECT_EQ(static_cast<std::size_t>(good_after), followers) << "trial " << trial;
+    if (from_mutated == 1) {
+      ++intact;
+    } else {
+      ++sync_lost;
+      for (std::size_t i = 0; i + 1 < bytes.size(); ++i) {
+        EXPECT_FALSE(bytes[i] == kHilSync0 && bytes[i + 1] == kHilSync1) << "trial " << trial;
+      }
+    }
+  }
+  EXPECT_GT(counted, 220);
+  EXPECT_EQ(counted + intact + sync_lost, 300);
 }
 
 }  // namespace
