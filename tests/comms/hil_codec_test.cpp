@@ -90,10 +90,32 @@ TEST(HilCodec, ResynchronisesAfterGarbageAndCorruption) {
   const Decoded got = feed(d, stream, n);
   EXPECT_EQ(got.frames, 1);
   EXPECT_EQ(d.crc_errors(), 1u);
+  EXPECT_EQ(d.skipped_bytes(), sizeof(junk));  // each 0xA5 not followed by 0x5A too
   ImuSample out;
   ASSERT_EQ(decode_payload(got.payload.data(), got.size, out), Status::kOk);
   EXPECT_EQ(out.stamp.us, 42);
   EXPECT_FLOAT_EQ(out.accel_mps2.z(), 9.81f);
+}
+
+// A frame whose sync pair is damaged never starts, so no CRC error counts it: its bytes are
+// counted as skipped instead, and the frame after it decodes.
+TEST(HilCodec, AFrameWithADamagedSyncIsCountedAsSkippedBytes) {
+  uint8_t payload[64], frame[128], stream[256];
+  AltimeterSample alt;
+  alt.stamp = TimeUs::from_us(7);
+  alt.height_m = 1.25f;
+  const std::size_t p = encode_payload(alt, payload, sizeof(payload));
+  const std::size_t f = hil_encode(static_cast<uint8_t>(HilType::kAltitude), payload, p, frame, sizeof(frame));
+  for (const std::size_t damaged : {std::size_t{0}, std::size_t{1}}) {
+    std::memcpy(stream, frame, f);
+    stream[damaged] ^= 0xFF;  // 0x5A, 0xA5: neither byte of the pair where it belongs
+    std::memcpy(stream + f, frame, f);
+    HilDecoder d;
+    const Decoded got = feed(d, stream, 2 * f);
+    EXPECT_EQ(got.frames, 1) << damaged;
+    EXPECT_EQ(d.crc_errors() + d.length_errors(), 0u) << damaged;
+    EXPECT_EQ(d.skipped_bytes(), f) << damaged;
+  }
 }
 
 TEST(HilCodec, ImpossibleLengthIsDroppedAndCounted) {
@@ -101,6 +123,7 @@ TEST(HilCodec, ImpossibleLengthIsDroppedAndCounted) {
   HilDecoder d;
   EXPECT_EQ(feed(d, bad, sizeof(bad)).frames, 0);
   EXPECT_EQ(d.length_errors(), 1u);
+  EXPECT_EQ(d.skipped_bytes(), 0u);  // the frame started: counted as a length error, not skipped
 }
 
 TEST(HilMessages, PayloadsOfTheWrongSizeOrWithNaNAreRejected) {

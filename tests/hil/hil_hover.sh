@@ -25,5 +25,6 @@ assert m["collisions"] == 0, "collision"
 assert 0.8 < m["max_altitude_m"] < 1.3, f"max altitude {m['max_altitude_m']}"
 assert m["final_truth"]["z_m"] < 0.2, f"did not land: z = {m['final_truth']['z_m']}"
 assert m["hil_bad_frames"] == 0, "corrupt frames on the link"
+assert m["hil_skipped_bytes"] == 0, "bytes outside any frame on the link"
 print("hil hover: ok, max altitude %.2f m, frames out %d in %d" % (m["max_altitude_m"], m["hil_frames_out"], m["hil_frames_in"]))
 PY

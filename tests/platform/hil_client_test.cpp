@@ -119,10 +119,15 @@ TEST(HilClient, PeerGoneIsReportedAndGarbageCounted) {
   Pair pair;
   HilClient hil(pair.client, {}, Duration::from_ms(5));
   const uint8_t junk[] = {0xA5, 0x5A, 99, 1, 0, 7, 0x12, 0x34};  // unknown type, bad CRC
+  const uint8_t noise[] = {0x00, 0xA5, 0x13};                    // no frame starts in it
   ASSERT_TRUE(pair.server.write(junk, sizeof(junk)).ok());
-  (void)pair.client.wait_readable(Duration::from_ms(500));
-  EXPECT_EQ(hil.pump(), Status::kOk);
+  ASSERT_TRUE(pair.server.write(noise, sizeof(noise)).ok());
+  for (int i = 0; i < 10 && hil.counters().skipped_bytes < sizeof(noise); ++i) {
+    (void)pair.client.wait_readable(Duration::from_ms(100));
+    EXPECT_EQ(hil.pump(), Status::kOk);
+  }
   EXPECT_EQ(hil.counters().crc_errors, 1u);
+  EXPECT_EQ(hil.counters().skipped_bytes, sizeof(noise));
   pair.server.close();
   (void)pair.client.wait_readable(Duration::from_ms(500));
   EXPECT_EQ(hil.pump(), Status::kClosed);

@@ -137,7 +137,9 @@ void HilBridgeMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("hil_frames_out", static_cast<double>(frames_out_));
   out.emplace_back("hil_frames_in", static_cast<double>(frames_in_));
   out.emplace_back("hil_send_stalls", static_cast<double>(send_stalls_));
-  out.emplace_back("hil_bad_frames", static_cast<double>(bad_frames_ + decoder_.crc_errors()));
+  out.emplace_back("hil_bad_frames",
+                   static_cast<double>(bad_frames_ + decoder_.crc_errors() + decoder_.length_errors()));
+  out.emplace_back("hil_skipped_bytes", static_cast<double>(decoder_.skipped_bytes()));
 }
 
 }  // namespace kestrel::hil

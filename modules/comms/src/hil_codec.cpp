@@ -23,10 +23,21 @@ std::size_t hil_encode(uint8_t type, const uint8_t* payload, std::size_t size, u
 bool HilDecoder::push(uint8_t b) {
   switch (state_) {
     case State::kSync0:
-      if (b == kHilSync0) state_ = State::kSync1;
+      if (b == kHilSync0) {
+        state_ = State::kSync1;
+      } else {
+        ++skipped_bytes_;
+      }
       return false;
     case State::kSync1:
-      state_ = b == kHilSync1 ? State::kType : (b == kHilSync0 ? State::kSync1 : State::kSync0);
+      if (b == kHilSync1) {
+        state_ = State::kType;
+      } else if (b == kHilSync0) {
+        ++skipped_bytes_;  // the earlier 0xA5; this one may start the frame
+      } else {
+        skipped_bytes_ += 2;
+        state_ = State::kSync0;
+      }
       return false;
     case State::kType:
       type_ = b;

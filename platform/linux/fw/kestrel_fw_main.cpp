@@ -249,6 +249,10 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "kestrel-fw: mission %s, phase %s; scans %u matched %u\n",
                stack->finished() ? "finished" : "stopped", mission::to_string(stack->mission().phase()),
                stack->counters().scans, stack->counters().scans_matched);
+  // The link's health, for a bench test: damaged frames and bytes lost between frames.
+  const platform::HilCounters& link = bridge.counters();
+  std::fprintf(stderr, "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u\n",
+               link.frames, link.crc_errors, link.skipped_bytes, link.malformed);
   for (std::size_t i = 0; i < s.task_count(); ++i)
     std::fprintf(stderr, "  task %-10s runs %8llu  mean %8.1f us  max %8lld us  misses %llu\n", s.spec(i).name,
                  static_cast<unsigned long long>(s.stats(i).runs), s.stats(i).mean_us(),

@@ -16,6 +16,7 @@ Status HilClient::pump() {
       if (decoder_.push(buf[i])) dispatch();
   }
   counters_.crc_errors = decoder_.crc_errors() + decoder_.length_errors();
+  counters_.skipped_bytes = decoder_.skipped_bytes();
   return Status::kOk;
 }
 

@@ -5,7 +5,9 @@
 //
 // The decoder is a byte-at-a-time state machine over a fixed buffer: a corrupt frame (bad
 // CRC, impossible length) is dropped and counted, and the decoder resynchronises on the next
-// 0xA5 0x5A, so a glitch on the link costs one frame, never the stream.
+// 0xA5 0x5A, so a glitch on the link costs one frame, never the stream. A frame whose sync pair
+// was damaged never starts: its bytes are counted as skipped, with any noise between frames, so
+// a link that loses frames that way is not mistaken for a clean one.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -33,6 +35,7 @@ class HilDecoder {
   std::size_t size() const { return length_; }
   uint32_t crc_errors() const { return crc_errors_; }
   uint32_t length_errors() const { return length_errors_; }
+  uint32_t skipped_bytes() const { return skipped_bytes_; }  // read while hunting for a sync pair
   uint32_t frames() const { return frames_; }
 
  private:
@@ -45,6 +48,7 @@ class HilDecoder {
   std::array<uint8_t, kHilMaxPayload> buf_{};
   uint32_t crc_errors_ = 0;
   uint32_t length_errors_ = 0;
+  uint32_t skipped_bytes_ = 0;
   uint32_t frames_ = 0;
 };
 
