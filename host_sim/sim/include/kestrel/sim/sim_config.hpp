@@ -25,7 +25,7 @@ struct SimConfig {
   // collision checker uses, World::wall_thickness_m thick), 0 = its zero-thick centre line.
   // 0 is the default every figure in the README was measured with; at 0 a doorway looks
   // wall_thickness_m wider to the laser than it is to the vehicle, and a jamb seen edge-on is
-  // invisible (README, Exploration, "Not done").
+  // invisible (README, Exploration, "Not done"; measured in modules/exploration/EXPERIMENTS.md).
   double laser_sees_wall_thickness = 0;
   WallSurfaces laser_walls() const {
     return laser_sees_wall_thickness != 0 ? WallSurfaces::kBoxOutlines : WallSurfaces::kCentreLines;
