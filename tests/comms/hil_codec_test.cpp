@@ -118,12 +118,14 @@ TEST(HilCodec, AFrameWithADamagedSyncIsCountedAsSkippedBytes) {
   }
 }
 
+// The header is counted as a length error; the bytes after it, which the decoder cannot tell
+// from noise, as skipped.
 TEST(HilCodec, ImpossibleLengthIsDroppedAndCounted) {
-  const uint8_t bad[] = {kHilSync0, kHilSync1, 1, 0xFF, 0xFF};
+  const uint8_t bad[] = {kHilSync0, kHilSync1, 1, 0xFF, 0xFF, 0x10, 0x20, 0x30};
   HilDecoder d;
   EXPECT_EQ(feed(d, bad, sizeof(bad)).frames, 0);
   EXPECT_EQ(d.length_errors(), 1u);
-  EXPECT_EQ(d.skipped_bytes(), 0u);  // the frame started: counted as a length error, not skipped
+  EXPECT_EQ(d.skipped_bytes(), 3u);
 }
 
 TEST(HilMessages, PayloadsOfTheWrongSizeOrWithNaNAreRejected) {
@@ -250,14 +252,15 @@ TEST(HilCodec, RandomlyMutatedFramesAreCountedAndTheStreamRecovers) {
       ++counted;
       continue;
     }
-    // Nothing counted: no good frame was lost, and the damaged one either survived (bytes inserted
-    // before its sync, say) or lost its sync, so that the decoder never saw a frame start. The
-    // decoder counts frames, not bytes skipped while hunting for a sync.
+    // No bad frame counted: no good frame was lost, and the damaged one either survived (bytes
+    // inserted before its sync, say) or lost its sync, so that the decoder never saw a frame
+    // start; then its bytes are counted as skipped.
     EXPECT_EQ(static_cast<std::size_t>(good_after), followers) << "trial " << trial;
     if (from_mutated == 1) {
       ++intact;
     } else {
       ++sync_lost;
+      EXPECT_GT(d.skipped_bytes(), 0u) << "trial " << trial;
       for (std::size_t i = 0; i + 1 < bytes.size(); ++i) {
         EXPECT_FALSE(bytes[i] == kHilSync0 && bytes[i + 1] == kHilSync1) << "trial " << trial;
       }

@@ -93,7 +93,7 @@ class StillVehicle {
   Rig rig_;
   Pose2 pose_;
   float unbounded_m2_;
-  int index_ = 40;
+  int index_ = 40;  // before first_ok_, which the constructor computes from it
   bool first_ok_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "kestrel/core/messages.hpp"
 
@@ -71,8 +72,8 @@ const char* LaserParams::validate() const {
     return "laser.beam_interval_us must be a whole number >= 1";
   // Upper bounds keep the values inside what the simulator converts them to (int64 us, float).
   if (!(scan_period_s <= 10)) return "laser.scan_period_s must be at most 10";
-  if (!(std::fabs(first_angle_rad) <= 2 * 3.14159265358979323846 &&
-        std::fabs(angle_step_rad) <= 2 * 3.14159265358979323846))
+  constexpr double kTwoPi = 2 * std::numbers::pi;
+  if (!(std::fabs(first_angle_rad) <= kTwoPi && std::fabs(angle_step_rad) <= kTwoPi))
     return "laser angles must lie within [-2 pi, 2 pi]";
   if (!(scan_period_s * 1e6 >= beam_interval_us * beam_count))
     return "laser.scan_period_s is shorter than the sweep (beam_count * beam_interval_us)";

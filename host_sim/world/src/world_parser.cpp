@@ -11,10 +11,11 @@ namespace kestrel::sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// An indoor world lies well within +-this many metres of its origin in x and y. The
-// simulator's grids over the world (free space in 0.1 m cells, the ray caster's segment grid)
-// grow with its extent: a mistyped coordinate such as 1e12 would otherwise overflow their sizes.
-constexpr double kMaxCoordinateM = 500;
+// An indoor world lies well within +-this many metres of its origin in x and y (the built-in
+// ones are a few tens of metres across). The simulator's grids over the world (free space and the flight recorder's
+// seen cells at 0.1 m, the ray caster's segment grid) grow with the square of its extent: at
+// 100 m the free-space map is 4 M cells; a mistyped coordinate such as 1e12 would overflow it.
+constexpr double kMaxCoordinateM = 100;
 constexpr double kMaxWallThicknessM = 10;
 
 bool outside_extent(const Eigen::Vector2d& p) {
@@ -173,7 +174,8 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
         return fail(kw + " needs one number");
       if (nums[0] < 0 || (kw != "ceiling" && nums[0] == 0)) return fail(kw + " must be positive");
       if (kw == "wall_thickness" && nums[0] > kMaxWallThicknessM)
-        return fail("wall_thickness must be at most 10 m (use a box for a thick obstacle)");
+        return fail(kw + " must be at most " + std::to_string(static_cast<int>(kMaxWallThicknessM)) +
+                    " m (use a box for a thick obstacle)");
       if (kw == "wall_height") wall_height = nums[0];
       if (kw == "wall_thickness") w.wall_thickness_m = nums[0];
       if (kw == "ceiling") w.ceiling_m = nums[0];

@@ -10,14 +10,15 @@ Status HilClient::pump() {
   uint8_t buf[512];
   for (;;) {
     const Result<std::size_t> r = link_.read(buf, sizeof(buf));
-    if (!r.ok()) return r.status();
-    if (r.value() == 0) break;
+    if (!r.ok() || r.value() == 0) {
+      // Also when the peer has gone: the last bytes it sent count in what kestrel-fw reports.
+      counters_.crc_errors = decoder_.crc_errors() + decoder_.length_errors();
+      counters_.skipped_bytes = decoder_.skipped_bytes();
+      return r.ok() ? Status::kOk : r.status();
+    }
     for (std::size_t i = 0; i < r.value(); ++i)
       if (decoder_.push(buf[i])) dispatch();
   }
-  counters_.crc_errors = decoder_.crc_errors() + decoder_.length_errors();
-  counters_.skipped_bytes = decoder_.skipped_bytes();
-  return Status::kOk;
 }
 
 void HilClient::dispatch() {

@@ -6,8 +6,9 @@
 // The decoder is a byte-at-a-time state machine over a fixed buffer: a corrupt frame (bad
 // CRC, impossible length) is dropped and counted, and the decoder resynchronises on the next
 // 0xA5 0x5A, so a glitch on the link costs one frame, never the stream. A frame whose sync pair
-// was damaged never starts: its bytes are counted as skipped, with any noise between frames, so
-// a link that loses frames that way is not mistaken for a clean one.
+// was damaged never starts: its bytes are counted as skipped, with any noise between frames and
+// the rest of a frame dropped for its length, so a link that loses frames that way is not
+// mistaken for a clean one.
 #include <array>
 #include <cstddef>
 #include <cstdint>

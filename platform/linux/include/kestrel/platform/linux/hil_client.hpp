@@ -21,7 +21,7 @@ struct HilCounters {
   uint32_t malformed = 0;          // frames whose payload did not decode
   uint32_t unknown_type = 0;
   uint32_t crc_errors = 0;         // frames dropped by their CRC or an impossible length
-  uint32_t skipped_bytes = 0;      // bytes outside any frame: noise, or a frame with a damaged sync
+  uint32_t skipped_bytes = 0;      // outside any frame: noise, a damaged sync, a bad length's rest
   uint32_t dropped_imu = 0;        // IMU queue full: the loop fell behind
   uint32_t overwritten_scans = 0;  // a scan replaced one that was never read
   uint32_t write_failures = 0;
