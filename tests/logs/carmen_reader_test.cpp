@@ -9,6 +9,7 @@
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "log_test_files.hpp"
+#include "text_mutation.hpp"
 
 namespace kestrel::logs {
 namespace {
@@ -326,17 +327,7 @@ TEST(CarmenReader, RandomlyMutatedLogsNeverCrash) {
   TempLogFile file("mutated.log");
   int errors = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    std::string text = base;
-    const int edits = 1 + static_cast<int>(rng() % 4);
-    for (int e = 0; e < edits; ++e) {
-      const std::size_t pos = rng() % text.size();
-      const char c = alphabet[rng() % (sizeof alphabet - 1)];
-      switch (rng() % 3) {
-        case 0: text[pos] = c; break;
-        case 1: text.erase(pos, 1); break;
-        default: text.insert(pos, 1, c); break;
-      }
-    }
+    const std::string text = test::mutate_text(base, alphabet, rng);
     file.write(text);
     CarmenReader reader;
     ASSERT_EQ(reader.open(file.c_str()), Status::kOk);

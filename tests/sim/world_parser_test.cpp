@@ -10,6 +10,7 @@
 #include "kestrel/sim/free_space_map.hpp"
 #include "kestrel/sim/ray_caster.hpp"
 #include "kestrel/sim/world_parser.hpp"
+#include "text_mutation.hpp"
 
 namespace kestrel::sim {
 namespace {
@@ -159,17 +160,7 @@ TEST(WorldParser, RandomlyMutatedWorldsAreRefusedOrSound) {
   const char alphabet[] = "0123456789 .-+e:=#\n\txnaz";
   int errors = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    std::string text = base;
-    const int edits = 1 + static_cast<int>(rng() % 4);
-    for (int e = 0; e < edits; ++e) {
-      const std::size_t pos = rng() % text.size();
-      const char c = alphabet[rng() % (sizeof alphabet - 1)];
-      switch (rng() % 3) {
-        case 0: text[pos] = c; break;
-        case 1: text.erase(pos, 1); break;
-        default: text.insert(pos, 1, c); break;
-      }
-    }
+    const std::string text = test::mutate_text(base, alphabet, rng);
     const auto r = parse_world(text, "t.world");
     if (!r.ok) {
       ++errors;
