@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <iterator>
+#include <limits>
 #include <memory>
+#include <random>
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "synthetic_flight.hpp"
@@ -245,6 +248,103 @@ TEST(NavFilter, BadInputsHaveDefinedBehaviour) {
   p.accel_noise_xy = -1.0f;
   EXPECT_EQ(filter->set_params(p), Status::kInvalidArgument);
   EXPECT_GT(filter->params().accel_noise_xy, 0.0f);
+}
+
+// Regression: finite but absurd inputs used to be accepted. An IMU sample of 1e30 m/s^2 (or a
+// gyro of 1e30 rad/s) overflowed the covariance to inf and the position to 1e25 m or inf; a
+// first altimeter height of 1e30 m was set outright and then gated every good height out; a
+// roll of 1e30 rad was rotated through as garbage and ran the velocity away. Pinned: each
+// such input is refused (kOutOfRange, counted; the attitude ignored) and the state is exactly
+// what it was, on a property sweep of magnitudes drawn with a fixed seed.
+TEST(NavFilter, HugeFiniteInputsAreRefusedAndLeaveTheStateUnchanged) {
+  const float big[] = {1e30f, -1e30f, std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), 2e4f, -1e5f};
+  std::mt19937 rng(42);
+  auto pick = [&] { return big[std::uniform_int_distribution<std::size_t>(0, std::size(big) - 1)(rng)]; };
+  auto filter = std::make_unique<NavFilter>();
+  auto ref = std::make_unique<NavFilter>();  // the same good stream without the bad inputs
+  PoseMeasurement2 pm;
+  pm.pose = Pose2{1.0f, 2.0f, 0.5f};
+  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  AltimeterSample alt{TimeUs{}, 1e30f, 1e-4f};
+  EXPECT_EQ(filter->update_altitude(alt), Status::kOutOfRange);  // before the first pose too
+  ASSERT_EQ(filter->update_pose(pm), Status::kOk);
+  ASSERT_EQ(ref->update_pose(pm), Status::kOk);
+  ImuSample imu;
+  imu.accel_mps2 = Eigen::Vector3f(0.1f, -0.2f, 9.80665f);
+  imu.gyro_radps = Eigen::Vector3f(0.0f, 0.0f, 0.05f);
+  int refused = 0;
+  for (int i = 1; i <= 60; ++i) {
+    imu.stamp = TimeUs::from_us(5000LL * i);
+    ImuSample bad = imu;
+    const int axis = i % 3;
+    if (i % 2 == 0) {
+      bad.accel_mps2(axis) = pick();
+    } else {
+      bad.gyro_radps(axis) = pick();
+    }
+    EXPECT_EQ(filter->predict(bad), Status::kOutOfRange) << "step " << i;
+    FlightStatus fs;
+    fs.roll_rad = i % 2 == 0 ? pick() : 0.0f;
+    fs.pitch_rad = i % 2 == 0 ? 0.0f : pick();
+    filter->set_attitude(fs);  // ignored: not a wrapped angle
+    ASSERT_EQ(filter->predict(imu), Status::kOk);
+    ASSERT_EQ(ref->predict(imu), Status::kOk);
+    PoseMeasurement2 far = pm;
+    far.stamp = imu.stamp;
+    (i % 2 == 0 ? far.pose.x : far.pose.y) = pick();
+    EXPECT_EQ(filter->update_pose(far), Status::kOutOfRange);
+    alt.stamp = imu.stamp;
+    alt.height_m = pick();
+    EXPECT_EQ(filter->update_altitude(alt), Status::kOutOfRange);
+    refused += 2;
+    const NavState a = filter->state(), b = ref->state();
+    ASSERT_TRUE(a.position_m.allFinite() && a.velocity_mps.allFinite() && a.position_std_m.allFinite());
+    EXPECT_EQ(a.position_m, b.position_m) << "step " << i;
+    EXPECT_EQ(a.velocity_mps, b.velocity_mps);
+    EXPECT_EQ(a.heading_rad, b.heading_rad);
+  }
+  EXPECT_EQ(filter->counters().imu_out_of_range, 60u);
+  EXPECT_EQ(filter->counters().meas_out_of_range, static_cast<uint32_t>(refused) + 1u);
+  EXPECT_EQ(filter->counters().imu_samples, ref->counters().imu_samples);
+  // Huge but legal variances only make a measurement weightless: the state stays finite.
+  alt.height_m = 0.5f;
+  alt.variance_m2 = std::numeric_limits<float>::max();
+  EXPECT_EQ(filter->update_altitude(alt), Status::kOk);
+  EXPECT_EQ(filter->update_at_rest(imu.stamp, std::numeric_limits<float>::max()), Status::kOk);
+  PoseMeasurement2 vague = pm;
+  vague.stamp = imu.stamp;
+  vague.covariance = Eigen::Matrix3f::Identity() * std::numeric_limits<float>::max();
+  (void)filter->update_pose(vague);  // gated or weightless: either is defined
+  imu.stamp = imu.stamp + Duration::from_ms(5);
+  EXPECT_EQ(filter->predict(imu), Status::kOk);
+  EXPECT_TRUE(filter->state().position_m.allFinite());
+  EXPECT_TRUE(filter->state().position_std_m.allFinite());
+}
+
+// GIVEN an IMU clock that leaps an hour ahead, THEN the filter coasts over the gap (kTimeJump),
+// stays finite with a grown uncertainty, and the next pose re-anchors it.
+TEST(NavFilter, ImuLeapOfAnHourCoastsFinitelyAndRecovers) {
+  auto filter = std::make_unique<NavFilter>();
+  PoseMeasurement2 pm;
+  pm.pose = Pose2{1.0f, 2.0f, 0.5f};
+  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  ASSERT_EQ(filter->update_pose(pm), Status::kOk);
+  ImuSample imu;
+  imu.accel_mps2 = Eigen::Vector3f(0, 0, 9.80665f);
+  imu.stamp = TimeUs::from_us(5000);
+  ASSERT_EQ(filter->predict(imu), Status::kOk);
+  imu.stamp = imu.stamp + Duration::from_s(3600.0);
+  EXPECT_EQ(filter->predict(imu), Status::kTimeJump);
+  const NavState s = filter->state();
+  EXPECT_TRUE(s.position_m.allFinite() && s.position_std_m.allFinite() && std::isfinite(s.heading_std_rad));
+  EXPECT_GT(s.position_std_m.x(), 100.0f);
+  imu.stamp = imu.stamp + Duration::from_ms(5);
+  ASSERT_EQ(filter->predict(imu), Status::kOk);
+  pm.stamp = imu.stamp;
+  pm.pose = Pose2{3.0f, -1.0f, 0.2f};
+  EXPECT_EQ(filter->update_pose(pm), Status::kOk);
+  EXPECT_NEAR(filter->state().position_m.x(), 3.0f, 0.05f);
+  EXPECT_NEAR(filter->state().position_m.y(), -1.0f, 0.05f);
 }
 
 // GIVEN a filter with a full history, WHEN it predicts, updates in order, updates late and

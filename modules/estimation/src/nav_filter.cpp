@@ -11,6 +11,7 @@ namespace kestrel::estimation {
 namespace {
 
 bool finite3(const Eigen::Vector3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+bool within(const Eigen::Vector3f& v, float limit) { return v.cwiseAbs().maxCoeff() <= limit; }
 
 }  // namespace
 
@@ -36,7 +37,8 @@ void NavFilter::reset() {
 Duration NavFilter::history_span() const { return count_ == 0 ? Duration{} : slot(count_ - 1).t - slot(0).t; }
 
 void NavFilter::set_attitude(const FlightStatus& status) {
-  if (!std::isfinite(status.roll_rad) || !std::isfinite(status.pitch_rad)) return;
+  // Also rejects NaN: the comparisons are false.
+  if (!(std::fabs(status.roll_rad) <= kPi<float>) || !(std::fabs(status.pitch_rad) <= kPi<float>)) return;
   attitude_.roll = status.roll_rad;
   attitude_.pitch = status.pitch_rad;
 }
@@ -117,6 +119,10 @@ Status NavFilter::predict(const ImuSample& imu) {
     ++counters_.imu_not_finite;
     return Status::kNotFinite;
   }
+  if (!within(imu.accel_mps2, kMaxAccelMps2) || !within(imu.gyro_radps, kMaxGyroRadps)) {
+    ++counters_.imu_out_of_range;
+    return Status::kOutOfRange;
+  }
   if (have_imu_ && imu.stamp <= last_imu_t_) {
     ++counters_.imu_time_backwards;
     return Status::kTimeJump;
@@ -186,6 +192,10 @@ Status NavFilter::update_pose(const PoseMeasurement2& meas) {
     ++counters_.meas_not_finite;
     return Status::kInvalidArgument;
   }
+  if (!(std::fabs(meas.pose.x) <= kMaxCoordinateM && std::fabs(meas.pose.y) <= kMaxCoordinateM)) {
+    ++counters_.meas_out_of_range;
+    return Status::kOutOfRange;
+  }
   const Pose2 w = frame_correction_.compose(meas.pose);
   if (!initialised_) {
     initialise(meas.stamp, w);
@@ -221,6 +231,10 @@ Status NavFilter::update_altitude(const AltimeterSample& meas) {
     ++counters_.meas_not_finite;
     return Status::kInvalidArgument;
   }
+  if (!(std::fabs(meas.height_m) <= kMaxCoordinateM)) {
+    ++counters_.meas_out_of_range;
+    return Status::kOutOfRange;
+  }
   if (!initialised_) {
     have_height_ = true;
     last_height_ = meas.height_m;
@@ -239,7 +253,10 @@ Status NavFilter::update_at_rest(TimeUs stamp, float variance_mps2) {
     ++counters_.meas_not_finite;
     return Status::kNotFinite;
   }
-  if (!(variance_mps2 > 0.0f)) return Status::kInvalidArgument;
+  if (!(variance_mps2 > 0.0f)) {
+    ++counters_.meas_not_finite;  // as update_pose counts a non-positive variance
+    return Status::kInvalidArgument;
+  }
   if (!initialised_) return Status::kNoData;
   Entry e;
   e.t = stamp;
