@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <random>
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/core/angle.hpp"
@@ -177,6 +179,52 @@ TEST(Controller, NonFiniteOrInvalidInputsGiveTheSafeOutput) {
   EXPECT_EQ(c2.set_params(bad), Status::kInvalidArgument);
   EXPECT_EQ(c2.params().max_tilt_rad, default_controller_params().max_tilt_rad);
   EXPECT_EQ(c2.set_params(ControllerParams{}), Status::kInvalidArgument);  // zero gains
+}
+
+// Property: whatever finite NavState and set-point arrive (ordinary, huge, tiny, subnormal, any
+// heading, either mode), the command is finite and inside its limits, and any flagged safe
+// output is exactly level at hover thrust. Errors that overflow float (a state at 3e38 m and
+// a set-point at -3e38 m: the difference is inf) give the safe output flagged kInvalidNav, as
+// the header documents. 5000 draws with a fixed seed.
+TEST(Controller, AnyFiniteInputGivesABoundedFiniteCommand) {
+  const Controller c;
+  const ControllerParams& p = c.params();
+  const float fmax = std::numeric_limits<float>::max();
+  const float pool[] = {0.0f, 1.0f, -2.5f, 1e-40f, -1e-30f, 1e4f, -1e6f, 1e30f, -1e30f, fmax, -fmax};
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<std::size_t> which(0, std::size(pool) - 1);
+  std::uniform_real_distribution<float> ordinary(-3.0f, 3.0f);
+  auto draw = [&] { return rng() % 2 == 0 ? ordinary(rng) : pool[which(rng)]; };
+  int safe = 0;
+  for (int i = 0; i < 5000; ++i) {
+    NavState n = hover_at({draw(), draw(), draw()}, draw());
+    n.velocity_mps = Eigen::Vector3f(draw(), draw(), draw());
+    GuidanceSetpoint sp = hold({draw(), draw(), draw()}, draw());
+    sp.velocity_mps = Eigen::Vector3f(draw(), draw(), draw());
+    sp.mode = rng() % 2 == 0 ? GuidanceSetpoint::Mode::kPosition : GuidanceSetpoint::Mode::kVelocity;
+    const ControlOutput o = c.step(n, sp);
+    const AttitudeSetpoint& a = o.command;
+    ASSERT_TRUE(std::isfinite(a.pitch_rad) && std::isfinite(a.roll_rad) && std::isfinite(a.thrust) &&
+                std::isfinite(a.yaw_rate_radps)) << "draw " << i;
+    EXPECT_LE(std::abs(a.pitch_rad), p.max_tilt_rad);
+    EXPECT_LE(std::abs(a.roll_rad), p.max_tilt_rad);
+    EXPECT_GE(a.thrust, p.min_thrust);
+    EXPECT_LE(a.thrust, p.max_thrust);
+    EXPECT_LE(std::abs(a.yaw_rate_radps), p.max_yaw_rate_radps);
+    EXPECT_EQ(o.flags & control_flag::kInvalidSetpoint, 0u);
+    if ((o.flags & control_flag::kInvalidNav) != 0) {
+      ++safe;
+      EXPECT_EQ(o.flags, control_flag::kInvalidNav);
+      EXPECT_EQ(a.pitch_rad, 0.0f);
+      EXPECT_EQ(a.roll_rad, 0.0f);
+      EXPECT_EQ(a.yaw_rate_radps, 0.0f);
+      EXPECT_FLOAT_EQ(a.thrust, 0.5f);
+    }
+  }
+  EXPECT_GT(safe, 0);  // the overflowing pairs were drawn
+  const ControlOutput o = c.step(hover_at({fmax, 0, 1}), hold({-fmax, 0, 1}));
+  EXPECT_EQ(o.flags, control_flag::kInvalidNav);
+  EXPECT_FLOAT_EQ(o.command.thrust, 0.5f);
 }
 
 TEST(Controller, StepDoesNotAllocate) {

@@ -3,7 +3,8 @@
 // the second-order model of equation 1, with the model's offsets cancelled by feed-forward.
 // Steps, once per control period:
 //   1. check the inputs: an invalid or non-finite NavState or set-point gives the safe output
-//      (level, hover thrust, no yaw rate) and a flag, never NaN;
+//      (level, hover thrust, no yaw rate) and a flag, never NaN; so does a finite input whose
+//      error overflows float (e.g. positions of +-3e38 m), flagged kInvalidNav;
 //   2. world-frame errors: position (clipped to max_position_error_m; zero in x, y for
 //      kVelocity mode, which tracks velocity_mps and holds position_m.z()) and velocity
 //      (against the set-point's velocity, the feed-forward of kPosition mode);
