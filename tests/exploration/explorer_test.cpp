@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "kestrel/core/alloc_guard.hpp"
+#include "kestrel/core/angle.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
 #include "kestrel/exploration/srt_explorer.hpp"
 #include "kestrel/exploration/wall_follow_explorer.hpp"
@@ -278,6 +280,62 @@ void holds_on_bad_input(Explorer* ex) {
   EXPECT_EQ(ex->step(nav_at(1, 0.5f, 0.1f), scan, out), Status::kNotFound);
 }
 
+// Odd but finite inputs the hold checks do not catch: a scan stamped an hour after the last
+// one, a heading of 1e30 rad, positions at 1e30 m or the float maximum, beam_count above the
+// array's capacity, a scan of nothing but maximum ranges or of nothing but error codes.
+// Pinned, for every explorer: step() returns, the set-point is finite, a velocity set-point
+// stays within the speed limit, a huge position is refused as a hold (kOutOfRange) and the
+// explorer keeps working on good input afterwards. Under host-asan this also checks that no
+// float-to-int conversion of a huge coordinate is undefined.
+void odd_finite_inputs_give_finite_bounded_setpoints(Explorer* ex) {
+  SCOPED_TRACE(to_string(ex->kind()));
+  const SegmentWorld w = hall();
+  LaserScan scan = w.scan(kUrg, 1, 0.5, 0.1, TimeUs{1000000});
+  ASSERT_EQ(ex->configure(Params{}, BeamGeometry::of(scan)), Status::kOk);
+  const float speed = Params{}.guidance.speed_limit_mps;
+  GuidanceSetpoint out;
+  auto expect_sane = [&](const char* what) {
+    SCOPED_TRACE(what);
+    EXPECT_TRUE(out.position_m.allFinite() && out.velocity_mps.allFinite() && std::isfinite(out.heading_rad));
+    if (out.mode == GuidanceSetpoint::Mode::kVelocity) {
+      EXPECT_LE(out.velocity_mps.head<2>().norm(), speed * 1.0001f);
+    }
+  };
+  ASSERT_EQ(ex->step(nav_at(1, 0.5f, 0.1f), scan, out), Status::kOk);
+  scan.stamp = scan.stamp + Duration::from_s(3600.0);  // an hour later: a good step
+  EXPECT_EQ(ex->step(nav_at(1, 0.5f, 0.1f), scan, out), Status::kOk);
+  expect_sane("hour");
+  EXPECT_LE(std::abs(angle_diff(out.heading_rad, 0.1f)), static_cast<float>(M_PI));
+  scan.stamp = scan.stamp + Duration::from_ms(100);
+  EXPECT_EQ(ex->step(nav_at(1, 0.5f, 1e30f), scan, out), Status::kOk);
+  expect_sane("heading 1e30");
+  for (float big : {1e30f, -1e30f, std::numeric_limits<float>::max(), 2e5f}) {
+    scan.stamp = scan.stamp + Duration::from_ms(100);
+    EXPECT_EQ(ex->step(nav_at(big, -big, 0.1f), scan, out), Status::kOutOfRange) << big;
+    expect_sane("huge position");
+    EXPECT_EQ(out.velocity_mps, Eigen::Vector3f::Zero());
+    EXPECT_FLOAT_EQ(out.position_m.x(), 1.0f);  // the hold is at the last good position
+  }
+  LaserScan over = scan;
+  over.beam_count = static_cast<uint16_t>(kMaxBeams + 1);
+  EXPECT_EQ(ex->step(nav_at(1, 0.5f, 0.1f), over, out), Status::kInvalidArgument);
+  expect_sane("beam_count above capacity");
+  LaserScan far = scan, codes = scan;
+  for (std::size_t i = 0; i < far.beam_count; ++i) {
+    far.range_mm[i] = far.max_range_mm;
+    codes.range_mm[i] = 1;  // an error code below kMinValidRangeMm
+  }
+  far.stamp = scan.stamp + Duration::from_ms(100);
+  codes.stamp = far.stamp + Duration::from_ms(100);
+  (void)ex->step(nav_at(1, 0.5f, 0.1f), far, out);
+  expect_sane("all max range");
+  (void)ex->step(nav_at(1, 0.5f, 0.1f), codes, out);
+  expect_sane("all error codes");
+  scan.stamp = codes.stamp + Duration::from_ms(100);
+  EXPECT_EQ(ex->step(nav_at(1.05f, 0.5f, 0.1f), scan, out), Status::kOk);
+  expect_sane("good again");
+}
+
 void never_allocates(Explorer* ex) {
   SCOPED_TRACE(to_string(ex->kind()));
   const SegmentWorld w = hall();
@@ -387,6 +445,15 @@ TEST(WallFollowExplorer, HoldsOnBadInput) {
 }
 TEST(SrtExplorer, HoldsOnBadInput) {
   holds_on_bad_input(std::make_unique<SrtExplorer>().get());
+}
+TEST(BlendExplorer, OddFiniteInputsGiveFiniteBoundedSetpoints) {
+  odd_finite_inputs_give_finite_bounded_setpoints(std::make_unique<BlendExplorer>().get());
+}
+TEST(WallFollowExplorer, OddFiniteInputsGiveFiniteBoundedSetpoints) {
+  odd_finite_inputs_give_finite_bounded_setpoints(std::make_unique<WallFollowExplorer>().get());
+}
+TEST(SrtExplorer, OddFiniteInputsGiveFiniteBoundedSetpoints) {
+  odd_finite_inputs_give_finite_bounded_setpoints(std::make_unique<SrtExplorer>().get());
 }
 TEST(BlendExplorer, GuidanceStepNeverAllocates) {
   never_allocates(std::make_unique<BlendExplorer>().get());

@@ -6,6 +6,13 @@
 #include <cstring>
 
 namespace kestrel::exploration {
+namespace {
+
+bool usable_position(const NavState& nav) {
+  return std::fabs(nav.position_m.x()) <= Explorer::kMaxPositionM && std::fabs(nav.position_m.y()) <= Explorer::kMaxPositionM;
+}
+
+}  // namespace
 
 const char* to_string(ExplorerKind k) {
   switch (k) {
@@ -51,7 +58,7 @@ void ExplorerBase::hold(const NavState& nav, TimeUs now, GuidanceSetpoint& out) 
   out.stamp = now;
   out.mode = GuidanceSetpoint::Mode::kVelocity;
   Point2 p = last_position_;
-  if (!have_position_ && std::isfinite(nav.position_m.x()) && std::isfinite(nav.position_m.y()))
+  if (!have_position_ && usable_position(nav))
     p = {nav.position_m.x(), nav.position_m.y()};
   out.position_m = {p.x, p.y, params_.guidance.altitude_m};
   out.velocity_mps.setZero();
@@ -69,6 +76,8 @@ Status ExplorerBase::step(const NavState& nav, const LaserScan& scan, GuidanceSe
   } else if (!nav.valid || !std::isfinite(nav.position_m.x()) || !std::isfinite(nav.position_m.y()) ||
              !std::isfinite(nav.heading_rad)) {
     st = Status::kNotFinite;
+  } else if (!usable_position(nav)) {
+    st = Status::kOutOfRange;
   } else if (scan.beam_count == 0) {
     st = Status::kNoData;
   } else if (!field_.geometry().matches(scan)) {
