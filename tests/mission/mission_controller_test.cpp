@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/core/angle.hpp"
@@ -259,6 +260,72 @@ TEST(MissionController, NaNEstimateIsTreatedAsInvalid) {
     EXPECT_TRUE(std::isfinite(s.heading_rad));
   }
   EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
+}
+
+// Regression: the phase timers subtracted raw stamps. After the clock stepped back an hour,
+// an invalid estimate never looked stale (now - last valid < 0), so the failsafe would not
+// engage for an hour, and the hover's timer ran an hour long. Pinned: a step back advances
+// the mission's clock by nothing, so the failsafe engages after estimate_timeout_s of
+// (later) steps and the hover ends on time.
+TEST(MissionController, ClockSteppingBackAnHourKeepsTheTimersAndTheFailsafe) {
+  MissionRun r;
+  MissionParams p;
+  p.hover_duration_s = 2.0f;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
+  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  r.t = r.t - Duration::from_s(3600.0);
+  EXPECT_TRUE(r.run_until(Phase::kLand, 2.5f));  // not an hour and two seconds
+  MissionRun f;
+  ASSERT_EQ(f.mc.configure(MissionKind::kHover, {}), Status::kOk);
+  ASSERT_TRUE(f.run_until(Phase::kHover, 10));
+  f.t = f.t - Duration::from_s(3600.0);
+  f.v.nav.valid = false;
+  EXPECT_TRUE(f.run_until(Phase::kFailsafeLand, 1.0f));
+}
+
+// Regression: a clock leaping an hour ahead during the failsafe descent passed its time bound
+// at once: kLanded, motors off, in the air. Pinned: a leap advances the mission's clock by at
+// most 1 s (a stalled loop still trips the estimate timeout, as the first part shows), so the
+// descent continues from the height it had and ends on its own time.
+TEST(MissionController, ClockLeapingAnHourAheadDoesNotEndAPhaseAtOnce) {
+  MissionRun r;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, {}), Status::kOk);
+  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  r.v.nav.valid = false;
+  r.t = r.t + Duration::from_s(3600.0);
+  GuidanceSetpoint s = r.step();
+  EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);  // a leap without an estimate: stale
+  const float z = s.position_m.z();
+  r.t = r.t + Duration::from_s(3600.0);
+  s = r.step();
+  EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
+  EXPECT_TRUE(r.mc.wants_armed());
+  EXPECT_NEAR(s.position_m.z(), z, 0.1f + 1e-4f);  // the ramp moved at most 0.1 s worth
+  EXPECT_TRUE(r.run_until(Phase::kLanded, 10));
+}
+
+// A non-finite set-point from the explorer is not passed on: the mission holds where the
+// vehicle is (velocity zero) at the flight altitude, with a finite heading.
+TEST(MissionController, NonFiniteExplorerSetpointBecomesAHold) {
+  MissionRun r;
+  ExplorerOutput e;
+  e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
+  ASSERT_EQ(r.mc.configure(MissionKind::kExplore, {}), Status::kOk);
+  ASSERT_TRUE(r.run_until(Phase::kExplore, 10, &e));
+  const float nan = std::nanf(""), inf = std::numeric_limits<float>::infinity();
+  for (int field = 0; field < 4; ++field) {
+    ExplorerOutput bad = e;
+    if (field == 0) bad.setpoint.velocity_mps.x() = nan;
+    if (field == 1) bad.setpoint.velocity_mps.y() = -inf;
+    if (field == 2) bad.setpoint.heading_rad = nan;
+    if (field == 3) bad.setpoint.position_m.x() = inf;
+    const GuidanceSetpoint s = r.mc.step(r.t += Duration::from_ms(25), r.v.nav, &bad);
+    EXPECT_EQ(s.mode, GuidanceSetpoint::Mode::kVelocity) << field;
+    EXPECT_TRUE(s.velocity_mps.isZero()) << field;
+    EXPECT_TRUE(s.position_m.allFinite() && std::isfinite(s.heading_rad)) << field;
+    EXPECT_FLOAT_EQ(s.position_m.z(), MissionParams{}.takeoff_altitude_m);
+    EXPECT_EQ(r.mc.phase(), Phase::kExplore);
+  }
 }
 
 TEST(MissionController, RejectsBadConfiguration) {

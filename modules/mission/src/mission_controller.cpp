@@ -39,6 +39,8 @@ constexpr float kReturnFacingMinM = 0.1f;
 constexpr float kReturnGainPerS = 1.0f;
 // Flying home: coming this much nearer the carrot counts as progress.
 constexpr float kReturnProgressM = 0.1f;
+// The most one step advances the mission's clock (timers): see step().
+constexpr float kMaxClockStepS = 1.0f;
 }  // namespace
 
 Status MissionController::configure(MissionKind kind, const MissionParams& p, const IVector<Waypoint>* waypoints) {
@@ -95,57 +97,63 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
   const bool estimate_ok = nav.valid && nav.position_m.allFinite() && nav.velocity_mps.allFinite() &&
                            std::isfinite(nav.heading_rad);
   // The ramps integrate time between steps; a long gap (a stalled loop) must not make the
-  // set-point leap, so each step advances them by at most 0.1 s.
-  const float dt = seen_estimate_ ? std::clamp(static_cast<float>((now - last_step_).seconds()), 0.0f, 0.1f) : 0.0f;
+  // set-point leap, so each step advances them by at most 0.1 s. The timers run on the
+  // mission's clock t, which a step back in time does not move and a leap moves by at most
+  // kMaxClockStepS (more than estimate_timeout_s could usefully be: a stall still trips it).
+  const float gap = clock_started_ ? static_cast<float>((now - last_step_).seconds()) : 0.0f;
+  const float dt = seen_estimate_ ? std::clamp(gap, 0.0f, 0.1f) : 0.0f;
+  clock_ = clock_started_ ? clock_ + Duration::from_s(std::clamp(gap, 0.0f, kMaxClockStepS)) : now;
+  clock_started_ = true;
   last_step_ = now;
+  const TimeUs t = clock_;
   if (estimate_ok) {
-    if (!seen_estimate_) first_estimate_ = now;
-    last_valid_estimate_ = now;
+    if (!seen_estimate_) first_estimate_ = t;
+    last_valid_estimate_ = t;
     seen_estimate_ = true;
   }
   if (!configured_ || !seen_estimate_) return hold(now, Eigen::Vector3f::Zero(), 0);
 
   const bool airborne = phase_ != Phase::kIdle && phase_ != Phase::kLanded && phase_ != Phase::kFailsafeLand;
-  if (airborne && (now - last_valid_estimate_).seconds() > params_.estimate_timeout_s) {
+  if (airborne && (t - last_valid_estimate_).seconds() > params_.estimate_timeout_s) {
     // Descend from the last height we believed in; a set-point ramp that starts elsewhere would
     // make the vehicle climb or drop.
     if (phase_ != Phase::kTakeoff && phase_ != Phase::kLand) ramp_z_ = params_.takeoff_altitude_m;
-    enter(Phase::kFailsafeLand, now);
+    enter(Phase::kFailsafeLand, t);
   }
   const float alt = params_.takeoff_altitude_m;
 
   switch (phase_) {
     case Phase::kIdle:
-      if ((now - first_estimate_).seconds() < params_.preflight_s) {
+      if ((t - first_estimate_).seconds() < params_.preflight_s) {
         return hold(now, {nav.position_m.x(), nav.position_m.y(), nav.position_m.z()}, nav.heading_rad);
       }
       home_ = nav.position_m;
       hold_point_ = {home_.x(), home_.y(), alt};
       hold_heading_ = nav.heading_rad;
       ramp_z_ = nav.position_m.z();
-      enter(Phase::kTakeoff, now);
+      enter(Phase::kTakeoff, t);
       [[fallthrough]];
     case Phase::kTakeoff: {
       ramp_z_ = std::min(alt, ramp_z_ + params_.climb_rate_mps * dt);
       if (ramp_z_ >= alt && arrived(nav, hold_point_)) {
         if (kind_ == MissionKind::kHover) {
-          enter(Phase::kHover, now);
+          enter(Phase::kHover, t);
         } else if (kind_ == MissionKind::kWaypoints) {
           waypoint_index_ = 0;
           at_waypoint_ = false;
-          enter(Phase::kWaypoints, now);
+          enter(Phase::kWaypoints, t);
         } else {
           trail_.clear();
           trail_.record(nav.position_m);
-          enter(Phase::kExplore, now);
+          enter(Phase::kExplore, t);
         }
       }
       return hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
     }
     case Phase::kHover:
-      if ((now - phase_start_).seconds() >= params_.hover_duration_s) {
+      if ((t - phase_start_).seconds() >= params_.hover_duration_s) {
         ramp_z_ = hold_point_.z();
-        enter(Phase::kLand, now);
+        enter(Phase::kLand, t);
       }
       return hold(now, hold_point_, hold_heading_);
     case Phase::kWaypoints: {
@@ -153,15 +161,15 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       if (arrived(nav, w.position_m)) {
         if (!at_waypoint_) {
           at_waypoint_ = true;
-          arrived_at_ = now;
+          arrived_at_ = t;
         }
-        if ((now - arrived_at_).seconds() >= w.hold_s) {
+        if ((t - arrived_at_).seconds() >= w.hold_s) {
           at_waypoint_ = false;
           if (++waypoint_index_ == waypoints_.size()) {
             hold_point_ = w.position_m;
             hold_heading_ = w.heading_rad;
             ramp_z_ = w.position_m.z();
-            enter(Phase::kLand, now);
+            enter(Phase::kLand, t);
             return hold(now, hold_point_, hold_heading_);
           }
         }
@@ -171,16 +179,23 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
     }
     case Phase::kExplore: {
       if (estimate_ok) trail_.record(nav.position_m);
-      const bool timed_out = (now - phase_start_).seconds() >= params_.explore_time_limit_s;
+      const bool timed_out = (t - phase_start_).seconds() >= params_.explore_time_limit_s;
       if (explorer == nullptr || explorer->finished || timed_out) {
         return_index_ = trail_.size() == 0 ? 0 : trail_.size() - 1;
         progress_index_ = return_index_ + 1;  // the first return step counts as progress
-        progress_at_ = now;
+        progress_at_ = t;
         hold_heading_ = nav.heading_rad;
-        enter(Phase::kReturn, now);
+        enter(Phase::kReturn, t);
         return hold(now, nav.position_m, hold_heading_);
       }
       GuidanceSetpoint s = explorer->setpoint;
+      if (!s.position_m.allFinite() || !s.velocity_mps.allFinite() || !std::isfinite(s.heading_rad)) {
+        // Not passed on: hold where the vehicle is (or home, with no estimate), velocity zero.
+        const Eigen::Vector3f here = estimate_ok ? nav.position_m : home_;
+        s = hold(now, {here.x(), here.y(), alt}, estimate_ok ? nav.heading_rad : hold_heading_);
+        s.mode = GuidanceSetpoint::Mode::kVelocity;
+        return s;
+      }
       s.stamp = now;
       s.position_m.z() = alt;  // the explorer plans in the plane
       s.velocity_mps.z() = 0;
@@ -204,7 +219,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         hold_point_ = {home_.x(), home_.y(), alt};
         ramp_z_ = alt;
         returned_home_ = true;
-        enter(Phase::kLand, now);
+        enter(Phase::kLand, t);
         return hold(now, hold_point_, hold_heading_);
       }
       // Progress is a breadcrumb passed or the carrot come nearer. Without it for
@@ -217,11 +232,11 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       } else if (return_index_ < progress_index_ || to_carrot < progress_distance_ - kReturnProgressM) {
         progress_index_ = return_index_;
         progress_distance_ = to_carrot;
-        progress_at_ = now;
-      } else if ((now - progress_at_).seconds() > params_.return_stall_s) {
+        progress_at_ = t;
+      } else if ((t - progress_at_).seconds() > params_.return_stall_s) {
         hold_point_ = {nav.position_m.x(), nav.position_m.y(), alt};
         ramp_z_ = alt;
-        enter(Phase::kLand, now);
+        enter(Phase::kLand, t);
         return hold(now, hold_point_, hold_heading_);
       }
       // Velocity set-points, so that the composition can bound them against the laser's
@@ -244,7 +259,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
     case Phase::kLand: {
       ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);  // aim below the floor to settle
       if (nav.position_m.z() < params_.landed_altitude_m && std::fabs(nav.velocity_mps.z()) < 0.2f)
-        enter(Phase::kLanded, now);
+        enter(Phase::kLanded, t);
       GuidanceSetpoint s = hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
       if (kind_ != MissionKind::kExplore) return s;
       // After exploring, home is a point of the estimate's drifted frame: held as a position it
@@ -266,8 +281,8 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       s.heading_rad = hold_heading_;
       const float fall_time = params_.takeoff_altitude_m / params_.descent_rate_mps + 3.0f;
       if ((estimate_ok && nav.position_m.z() < params_.landed_altitude_m) ||
-          (now - phase_start_).seconds() > fall_time)
-        enter(Phase::kLanded, now);
+          (t - phase_start_).seconds() > fall_time)
+        enter(Phase::kLanded, t);
       return s;
     }
     case Phase::kLanded:

@@ -11,6 +11,11 @@
 // explorer's set-point through, pinned to the flight altitude, and records a breadcrumb trail
 // that the return phase flies back along. Return, and the landing after it, fly velocity
 // set-points, which the composition bounds against the laser's returns.
+//
+// Bad input: an invalid or non-finite NavState counts towards the failsafe; a non-finite
+// explorer set-point becomes a hold (velocity zero, where the vehicle is). Time: the phase
+// timers run on the mission's own clock, which follows `now` but does not move when `now`
+// steps back and moves at most 1 s when it leaps ahead; the ramps move at most 0.1 s a step.
 #include <cstddef>
 #include <cstdint>
 
@@ -77,6 +82,7 @@ class MissionController {
   bool wants_armed() const { return phase_ != Phase::kIdle && phase_ != Phase::kLanded; }
   // True while the vehicle rests on the ground (before take-off, after touchdown).
   bool at_rest() const { return !wants_armed(); }
+  // On the mission's clock (equal to the steps' `now` unless time jumped).
   TimeUs phase_started() const { return phase_start_; }
   const Eigen::Vector3f& home() const { return home_; }
   std::size_t waypoint_index() const { return waypoint_index_; }
@@ -100,6 +106,8 @@ class MissionController {
   TimeUs phase_start_;
   TimeUs last_valid_estimate_;
   TimeUs last_step_;
+  TimeUs clock_;  // the timers' clock: see the header comment
+  bool clock_started_ = false;
   bool seen_estimate_ = false;
   TimeUs first_estimate_;
   Eigen::Vector3f home_ = Eigen::Vector3f::Zero();
