@@ -470,6 +470,76 @@ TEST(ScanMatcher, RejectsBadScans) {
   EXPECT_LT(std::hypot(m.measurement.pose.x, m.measurement.pose.y), 0.004f);
 }
 
+// Odd scans the checks above do not reach: beam_count above the array's capacity (the
+// uint16_t allows 65535, the array holds kMaxBeams) is bad geometry, read no further; a scan
+// stamped an hour after the last is matched in the largest window (kWindowClamped at most)
+// and gives a finite pose where the vehicle is. Neither disturbs the next scan.
+TEST(ScanMatcher, BeamCountAboveCapacityAndAnHourLongGap) {
+  Rig r;
+  const LaserScan good = test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(0));
+  ASSERT_TRUE(r.m->process(good).ok());
+  for (const uint16_t n : {static_cast<uint16_t>(kMaxBeams + 1), uint16_t{65535}}) {
+    LaserScan s = good;
+    s.stamp = at(1);
+    s.beam_count = n;
+    s.angle_step_rad = 1e-5f;  // so that only the count is wrong
+    const ScanMatch m = r.m->process(s);
+    EXPECT_FALSE(m.ok());
+    EXPECT_NE(m.measurement.flags & match_flag::kBadGeometry, 0u) << n;
+    EXPECT_TRUE(m.measurement.pose.finite());
+  }
+  LaserScan later = good;
+  later.stamp = at(1);
+  ASSERT_TRUE(r.m->process(later).ok());
+  later.stamp = later.stamp + Duration::from_s(3600.0);
+  const ScanMatch m = r.m->process(later);
+  EXPECT_TRUE(m.measurement.pose.finite());
+  EXPECT_TRUE(m.measurement.covariance.allFinite());
+  EXPECT_TRUE(m.ok()) << m.measurement.flags;
+  EXPECT_LT(std::hypot(m.measurement.pose.x, m.measurement.pose.y), 0.0075f);
+  later.stamp = later.stamp + Duration::from_ms(25);
+  const ScanMatch next = r.m->process(later);
+  EXPECT_TRUE(next.ok());
+  EXPECT_LT(std::hypot(next.measurement.pose.x, next.measurement.pose.y), 0.0075f);
+}
+
+// A prior that is finite but absurd (a pose 1e30 m or 1e5 m away, a heading of 1e30 rad,
+// sigmas of 1e30) must not crash, hang or give a non-finite pose: a pose off the map is
+// refused (kRejected), a huge sigma keeps the largest window and still matches, and the next
+// scan without a prior matches where the vehicle is.
+TEST(ScanMatcher, AbsurdFinitePriorIsRefusedOrBounded) {
+  Rig r;
+  const LaserScan first = test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(0));
+  ASSERT_TRUE(r.m->process(first).ok());
+  int i = 1;
+  for (const float far : {1e30f, -std::numeric_limits<float>::max(), 1e5f}) {
+    PosePrior prior;
+    prior.pose = {far, -far, 0};
+    prior.position_std_m = 0.01f;
+    prior.heading_std_rad = 0.01f;
+    const ScanMatch m = r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(i++)), &prior);
+    EXPECT_FALSE(m.ok()) << far;
+    EXPECT_TRUE(m.measurement.pose.finite());
+    EXPECT_TRUE(m.measurement.covariance.allFinite());
+  }
+  PosePrior turned;  // 1e30 rad wraps to some heading in [-pi, pi): legal, if wrong
+  turned.pose = {0, 0, 1e30f};
+  turned.position_std_m = turned.heading_std_rad = 0.01f;
+  const ScanMatch t = Rig().m->process(first, &turned);
+  EXPECT_TRUE(t.measurement.pose.finite() && t.measurement.covariance.allFinite());
+  PosePrior wide;
+  wide.pose = {0.01f, 0, 0};
+  wide.position_std_m = 1e30f;
+  wide.heading_std_rad = std::numeric_limits<float>::max();
+  const ScanMatch w = r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(i++)), &wide);
+  EXPECT_TRUE(w.measurement.pose.finite());
+  EXPECT_TRUE(w.measurement.covariance.allFinite());
+  EXPECT_TRUE(w.ok()) << w.measurement.flags;
+  const ScanMatch m = r.m->process(test::cast_scan({0, 0, 0}, test::room(), 1081, 4.712f, at(i++)));
+  ASSERT_TRUE(m.ok());
+  EXPECT_LT(std::hypot(m.measurement.pose.x, m.measurement.pose.y), 0.0075f);
+}
+
 // Only the points the map can judge are scored, and the score is their mean: a scan whose
 // only points inside the 7.7 m map are a few on a post (the rest on a hall's walls 20 m away)
 // fits them perfectly, yet that is too little to be a match. It is lost, not confident.
