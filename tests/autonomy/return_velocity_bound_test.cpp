@@ -159,6 +159,26 @@ TEST_F(ReturnVelocityBoundTest, HoldsWithoutARecentScan) {
   }
 }
 
+// Regression: age was only checked one way. A scan stamped an hour ahead of the guidance
+// clock (the laser's clock leapt, or the loop's stepped back) counted as recent for that
+// hour, so if the laser then stalled the stored velocity stood for an hour instead of the
+// hold after kScanMaxAgePeriods. Pinned: up to one scan period ahead is recent (stamping
+// slack), beyond that the flight holds, as for a stale scan, and the scan stays unused.
+TEST_F(ReturnVelocityBoundTest, HoldsOnAScanStampedFarAheadOfTheClock) {
+  bool fresh = true;
+  GuidanceSetpoint sp = velocity(0.6f, 0.0f);
+  EXPECT_EQ(bound_.apply(kT0 - kPeriod, kPeriod, scan_, fresh, nav_at(0, 0, 0), *explorer_, sp), Status::kOk);
+  EXPECT_NEAR(sp.velocity_mps.x(), 0.4f, 0.01f);
+  for (const Duration ahead : {kPeriod + Duration::from_us(1), Duration::from_s(3600.0)}) {
+    fresh = true;
+    sp = velocity(0.6f, 0.3f);
+    EXPECT_EQ(bound_.apply(kT0 - ahead, kPeriod, scan_, fresh, nav_at(0, 0, 0), *explorer_, sp), Status::kRejected);
+    EXPECT_FLOAT_EQ(sp.velocity_mps.head<2>().norm(), 0.0f);
+    EXPECT_FLOAT_EQ(sp.velocity_mps.z(), 0.25f);
+    EXPECT_TRUE(fresh);
+  }
+}
+
 TEST_F(ReturnVelocityBoundTest, HoldsWhenTheExplorerCannotBound) {
   // A non-finite heading: the explorer zeroes the horizontal velocity and says so; that zero
   // stands until the next scan, without being reported again.

@@ -35,7 +35,8 @@ class ReturnVelocityBound {
   // One guidance cycle of the flight home. `setpoint` holds the mission's set-point, which must
   // be kVelocity; only its horizontal velocity is changed. `scan` is the newest scan, matched
   // or not (beam_count 0: none yet), and `scan_fresh` says it has not been used yet.
-  //  - The scan is recent when now - scan.stamp <= scan_period * kScanMaxAgePeriods.
+  //  - The scan is recent when now - scan.stamp <= scan_period * kScanMaxAgePeriods, and it
+  //    is not stamped more than one scan_period after now (a clock that leapt: its age is unknown).
   //    Not recent: the horizontal velocity is zeroed (hold), kRejected; nothing else changes
   //    (scan_fresh is left as it is, the stored velocity too).
   //  - Recent and fresh: scan_fresh is cleared, explorer.bound_velocity bounds the set-point
