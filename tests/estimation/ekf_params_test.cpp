@@ -10,6 +10,8 @@
 #include <random>
 #include <string>
 
+#include "text_mutation.hpp"
+
 namespace kestrel::estimation {
 namespace {
 
@@ -100,26 +102,16 @@ TEST(EkfParams, RandomlyMutatedFilesAreRefusedWholeOrApplied) {
   const std::string base(buf, n.value());
   std::mt19937 rng(23);
   const char alphabet[] = "0123456789 .-+e=#\n\r\txnaif_";
+  // Half the trials edit only key lines (comments are most of the text): from the '=' on.
+  const test::EditPosition in_a_value = [](const std::string& text, std::size_t drawn, std::mt19937& r) {
+    const std::size_t line_start = text.rfind('\n', drawn) == std::string::npos ? 0 : text.rfind('\n', drawn) + 1;
+    const std::size_t line_end = std::min(text.find('\n', line_start), text.size());
+    const std::size_t eq = text.find(" = ", line_start);
+    return text[line_start] != '#' && eq < line_end ? eq + r() % (line_end - eq) : drawn;
+  };
   int errors = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    std::string text = base;
-    const int edits = 1 + static_cast<int>(rng() % 4);
-    for (int e = 0; e < edits; ++e) {
-      std::size_t pos = rng() % text.size();
-      if (trial % 2 == 1) {
-        // Half the trials edit only key lines (comments are most of the text): from the '=' on.
-        const std::size_t line_start = text.rfind('\n', pos) == std::string::npos ? 0 : text.rfind('\n', pos) + 1;
-        const std::size_t line_end = std::min(text.find('\n', line_start), text.size());
-        const std::size_t eq = text.find(" = ", line_start);
-        if (text[line_start] != '#' && eq < line_end) pos = eq + rng() % (line_end - eq);
-      }
-      const char c = alphabet[rng() % (sizeof alphabet - 1)];
-      switch (rng() % 3) {
-        case 0: text[pos] = c; break;
-        case 1: text.erase(pos, 1); break;
-        default: text.insert(pos, 1, c); break;
-      }
-    }
+    const std::string text = test::mutate_text(base, alphabet, rng, trial % 2 == 1 ? in_a_value : test::anywhere);
     EkfParams p = defaults;
     params::ParamError err;
     const Status s = params::parse_params(text, ekf_param_fields(p), err);
