@@ -40,7 +40,7 @@ constexpr float kReturnGainPerS = 1.0f;
 // Flying home: coming this much nearer the carrot counts as progress.
 constexpr float kReturnProgressM = 0.1f;
 // The most one step advances the mission's clock (timers): see step().
-constexpr float kMaxClockStepS = 1.0f;
+constexpr Duration kMaxClockStep = Duration::from_us(1'000'000);
 }  // namespace
 
 Status MissionController::configure(MissionKind kind, const MissionParams& p, const IVector<Waypoint>* waypoints) {
@@ -99,10 +99,10 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
   // The ramps integrate time between steps; a long gap (a stalled loop) must not make the
   // set-point leap, so each step advances them by at most 0.1 s. The timers run on the
   // mission's clock t, which a step back in time does not move and a leap moves by at most
-  // kMaxClockStepS (more than estimate_timeout_s could usefully be: a stall still trips it).
-  const float gap = clock_started_ ? static_cast<float>((now - last_step_).seconds()) : 0.0f;
-  const float dt = seen_estimate_ ? std::clamp(gap, 0.0f, 0.1f) : 0.0f;
-  clock_ = clock_started_ ? clock_ + Duration::from_s(std::clamp(gap, 0.0f, kMaxClockStepS)) : now;
+  // kMaxClockStep (more than estimate_timeout_s could usefully be: a stall still trips it).
+  const Duration gap = clock_started_ ? now - last_step_ : Duration{};
+  const float dt = seen_estimate_ ? std::clamp(static_cast<float>(gap.seconds()), 0.0f, 0.1f) : 0.0f;
+  clock_ = clock_started_ ? clock_ + std::clamp(gap, Duration{}, kMaxClockStep) : now;
   clock_started_ = true;
   last_step_ = now;
   const TimeUs t = clock_;
