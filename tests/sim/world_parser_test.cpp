@@ -119,13 +119,13 @@ TEST(WorldParser, MissingFileIsAnErrorNamingThePath) {
 // an overflowing cell count) instead of the file being refused with its line.
 TEST(WorldParser, PointsBeyondTheIndoorExtentAreRejected) {
   const BadCase cases[] = {
-      {"start 0 0 0 0\nwall 0 0 1e12 0\n", "t.world:2: wall: point (1e+12, 0) lies outside +-100 m"},
-      {"start 0 0 0 0\nwall 0 0 1 0\nwall -101 0 1 0\n", "t.world:3: wall: point"},
+      {"start 0 0 0 0\nwall 0 0 1e12 0\n", "t.world:2: wall: point (1e+12, 0) lies outside +-500 m"},
+      {"start 0 0 0 0\nwall 0 0 1 0\nwall -501 0 1 0\n", "t.world:3: wall: point"},
       {"start 0 0 0 0\npillar 0 0 1e9\n", "t.world:2: pillar: point"},
-      {"start 0 0 0 0\nbox 99 0 4 1\n", "t.world:2: box: point"},
+      {"start 0 0 0 0\nbox 499 0 4 1\n", "t.world:2: box: point"},
       {"start 0 0 0 0\npoly 0 0 1 0 0 1e300\n", "t.world:2: poly: point"},
-      {"start 0 0 0 0\nwall 0 0 1 0\nroom r 0 0 1 0 0 -101\n", "t.world:3: room: point"},
-      {"start 0 101 0 0\nwall 0 0 1 0\n", "t.world:1: start: point"},
+      {"start 0 0 0 0\nwall 0 0 1 0\nroom r 0 0 1 0 0 -501\n", "t.world:3: room: point"},
+      {"start 0 501 0 0\nwall 0 0 1 0\n", "t.world:1: start: point"},
       {"start 0 0 0 0\nwall_thickness 1e300\nwall 0 0 1 0\n", "t.world:2: wall_thickness must be at most 10 m"},
   };
   for (const BadCase& c : cases) {
@@ -134,9 +134,9 @@ TEST(WorldParser, PointsBeyondTheIndoorExtentAreRejected) {
     EXPECT_NE(r.error.find(c.expected), std::string::npos) << "got: " << r.error << "\nwanted: " << c.expected;
   }
   // The corners of the extent are still a world, and the simulator's grids build over it.
-  const auto r = parse("start -100 -100 0 0\nwall -100 100 100 -100\nwall_thickness 10\n");
+  const auto r = parse("start -500 -500 0 0\nwall -500 500 500 -500\nwall_thickness 10\n");
   ASSERT_TRUE(r.ok) << r.error;
-  const FreeSpaceMap map(r.world);  // the simulator's 0.1 m cells: 4 M of them
+  const FreeSpaceMap map(r.world, 1.0);  // 10^6 cells (at the simulator's 0.1 m, 10^8: too slow here)
   EXPECT_GT(map.reachable_cells(), 0u);
 }
 
@@ -176,7 +176,7 @@ TEST(WorldParser, RandomlyMutatedWorldsAreRefusedOrSound) {
     // An accepted world holds what the simulator relies on.
     const World& w = r.world;
     auto sound = [](const Eigen::Vector2d& p) {
-      return std::isfinite(p.x()) && std::isfinite(p.y()) && std::fabs(p.x()) <= 100 && std::fabs(p.y()) <= 100;
+      return std::isfinite(p.x()) && std::isfinite(p.y()) && std::fabs(p.x()) <= 500 && std::fabs(p.y()) <= 500;
     };
     ASSERT_TRUE(sound({w.start.x, w.start.y}) && std::isfinite(w.start.yaw_rad) && w.start.z >= 0) << text;
     ASSERT_TRUE(w.wall_thickness_m > 0 && w.wall_thickness_m <= 10) << text;

@@ -12,10 +12,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 // An indoor world lies well within +-this many metres of its origin in x and y (the built-in
-// ones are a few tens of metres across). The simulator's grids over the world (free space and the flight recorder's
-// seen cells at 0.1 m, the ray caster's segment grid) grow with the square of its extent: at
-// 100 m the free-space map is 4 M cells; a mistyped coordinate such as 1e12 would overflow it.
-constexpr double kMaxCoordinateM = 100;
+// ones are a few tens of metres across; tests lay walls 200 m long to face the laser with a
+// plane). The simulator's grids over the world (free space and the flight recorder's seen
+// cells at 0.1 m, the ray caster's segment grid) grow with the area of its bounding box: a
+// mistyped coordinate such as 1e12 would overflow their sizes. A world filling the whole
+// square would take 10^8 cells at 0.1 m: slow to build and large, but no overflow.
+constexpr double kMaxCoordinateM = 500;
 constexpr double kMaxWallThicknessM = 10;
 
 bool outside_extent(const Eigen::Vector2d& p) {

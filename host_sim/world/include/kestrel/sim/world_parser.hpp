@@ -16,7 +16,7 @@
 // OPTIONS: `z=ZMIN:ZMAX` (height range in m; walls default to 0:wall_height, obstacles to
 // 0:wall_height), `glass` (no return, the beam passes), `railing=P` (a beam returns with
 // probability P), `opaque`.
-// Every point (start, wall ends, obstacle corners, room corners) has |x| and |y| at most 100 m,
+// Every point (start, wall ends, obstacle corners, room corners) has |x| and |y| at most 500 m,
 // and wall_thickness is at most 10 m: a world beyond that is an error, not a grid the
 // simulator cannot allocate.
 // Errors name the source, the line and the reason: "lab.world:12: box needs 4 numbers".
