@@ -5,6 +5,15 @@
 
 namespace kestrel::comms {
 
+namespace {
+
+// SCIP's 6-bit character encoding: 0x30..0x6F carry 0..63. A line's checksum can hold over
+// characters outside it, so every decoded character is checked.
+bool in_encoding(uint8_t c) { return c >= 0x30 && c <= 0x6F; }
+uint32_t six_bits(uint8_t c) { return static_cast<uint32_t>(c - 0x30); }
+
+}  // namespace
+
 char scip_sum(const uint8_t* data, std::size_t size) {
   unsigned s = 0;
   for (std::size_t i = 0; i < size; ++i) s += data[i];
@@ -111,11 +120,11 @@ bool ScipDecoder::end_line() {
       }
       uint32_t t = 0;
       for (int i = 0; i < 4; ++i) {
-        if (l[i] < 0x30 || l[i] > 0x6F) {  // a sum can hold over characters outside the encoding
+        if (!in_encoding(l[i])) {
           fail(format_errors_);
           return false;
         }
-        t = (t << 6) | static_cast<uint32_t>(l[i] - 0x30);
+        t = (t << 6) | six_bits(l[i]);
       }
       building_.sensor_time_ms = t;
       stage_ = Stage::kData;
@@ -127,11 +136,11 @@ bool ScipDecoder::end_line() {
         return false;
       }
       for (std::size_t i = 0; i + 1 < n; ++i) {
-        if (l[i] < 0x30 || l[i] > 0x6F) {
+        if (!in_encoding(l[i])) {
           fail(format_errors_);
           return false;
         }
-        carry_ = (carry_ << 6) | static_cast<uint32_t>(l[i] - 0x30);
+        carry_ = (carry_ << 6) | six_bits(l[i]);
         if (++carry_chars_ == 3) {
           if (building_.count == expected_) {
             fail(format_errors_);

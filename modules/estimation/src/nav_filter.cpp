@@ -192,7 +192,7 @@ Status NavFilter::update_pose(const PoseMeasurement2& meas) {
     ++counters_.meas_not_finite;
     return Status::kInvalidArgument;
   }
-  if (!(std::fabs(meas.pose.x) <= kMaxCoordinateM && std::fabs(meas.pose.y) <= kMaxCoordinateM)) {
+  if (!(std::fabs(meas.pose.x) <= kMaxNavCoordinateM && std::fabs(meas.pose.y) <= kMaxNavCoordinateM)) {
     ++counters_.meas_out_of_range;
     return Status::kOutOfRange;
   }
@@ -231,7 +231,7 @@ Status NavFilter::update_altitude(const AltimeterSample& meas) {
     ++counters_.meas_not_finite;
     return Status::kInvalidArgument;
   }
-  if (!(std::fabs(meas.height_m) <= kMaxCoordinateM)) {
+  if (!(std::fabs(meas.height_m) <= kMaxNavCoordinateM)) {
     ++counters_.meas_out_of_range;
     return Status::kOutOfRange;
   }

@@ -9,7 +9,7 @@ namespace kestrel::exploration {
 namespace {
 
 bool usable_position(const NavState& nav) {
-  return std::fabs(nav.position_m.x()) <= Explorer::kMaxPositionM && std::fabs(nav.position_m.y()) <= Explorer::kMaxPositionM;
+  return std::fabs(nav.position_m.x()) <= kMaxNavCoordinateM && std::fabs(nav.position_m.y()) <= kMaxNavCoordinateM;
 }
 
 }  // namespace

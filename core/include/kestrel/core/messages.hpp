@@ -84,6 +84,11 @@ struct PoseMeasurement2 {
 
 namespace kestrel {
 
+// The farthest a position of the navigation frame may lie from its origin on any axis: far
+// beyond any indoor flight, near enough that a float keeps millimetres and grid cells fit an
+// int. The filter refuses measurements beyond it, guidance estimates beyond it.
+inline constexpr float kMaxNavCoordinateM = 1.0e4f;
+
 // The filter's estimate of the vehicle's motion: what guidance and control act on.
 // World frame: x, y horizontal, z up, heading counter-clockwise from the world x axis.
 struct NavState {

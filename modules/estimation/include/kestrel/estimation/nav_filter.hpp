@@ -49,8 +49,8 @@
 // gap and restarts the history), gated measurements (kRejected). Each is counted. Finite but
 // physically impossible values are refused with kOutOfRange and counted too: an IMU component
 // beyond kMaxAccelMps2 or kMaxGyroRadps (a float that size would overflow P), a pose x or y
-// or an altimeter height beyond kMaxCoordinateM; set_attitude ignores a roll or pitch outside
-// [-pi, pi] (not a wrapped angle) as it ignores a non-finite one.
+// or an altimeter height beyond kMaxNavCoordinateM (messages.hpp); set_attitude ignores a
+// roll or pitch outside [-pi, pi] (not a wrapped angle) as it ignores a non-finite one.
 //
 // API
 //   NavFilter(params)                  construct once (large: keep it static or at start-up)
@@ -95,7 +95,7 @@ struct NavFilterCounters {
   uint32_t corrections = 0;
   uint32_t corrections_rejected = 0;
   uint32_t meas_not_finite = 0;
-  uint32_t meas_out_of_range = 0;    // pose x, y or height beyond kMaxCoordinateM
+  uint32_t meas_out_of_range = 0;    // pose x, y or height beyond kMaxNavCoordinateM
   uint32_t meas_too_old = 0;         // older than the history
   uint32_t meas_future = 0;          // beyond max_future_s ahead of the newest sample
   uint32_t log_overflow = 0;         // log entries dropped while still inside the history
@@ -110,7 +110,6 @@ class NavFilter {
   // Plausibility bounds of the inputs (far beyond any sensor's range or indoor flight).
   static constexpr float kMaxAccelMps2 = 1000.0f;  // about 100 g
   static constexpr float kMaxGyroRadps = 100.0f;
-  static constexpr float kMaxCoordinateM = 1.0e4f;
 
   explicit NavFilter(const EkfParams& params = {});
 

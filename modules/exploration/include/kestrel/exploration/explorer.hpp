@@ -46,9 +46,6 @@ struct ExplorerStatus {
 
 class Explorer {
  public:
-  // A NavState farther than this from the origin on x or y is not a position the tree, the
-  // visited grid or the controller can use (float resolution, int cells): refused.
-  static constexpr float kMaxPositionM = 1.0e4f;
   virtual ExplorerKind kind() const = 0;
   // kInvalidArgument for invalid parameters or geometry; the explorer is then unconfigured and
   // every step holds.
@@ -57,10 +54,10 @@ class Explorer {
   virtual void reset() = 0;
   // One guidance cycle on the scan just received and the newest navigation state. Always
   // writes a set-point. On bad input (unconfigured: kNotFound; invalid or non-finite NavState:
-  // kNotFinite; a position beyond kMaxPositionM: kOutOfRange; empty scan: kNoData; scan of
-  // another geometry: kInvalidArgument; time going backwards: kTimeJump) it writes a hold:
-  // kVelocity with zero velocity at the last good position, heading held, and leaves the
-  // exploration state untouched.
+  // kNotFinite; a position beyond kMaxNavCoordinateM, messages.hpp: kOutOfRange; empty scan:
+  // kNoData; scan of another geometry: kInvalidArgument; time going backwards: kTimeJump) it
+  // writes a hold: kVelocity with zero velocity at the last good position, heading held, and
+  // leaves the exploration state untouched.
   virtual Status step(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& out) = 0;
   // Bounds a velocity set-point from elsewhere (the flight home along the trail) with this
   // explorer's approach limiter, against the scan and the heading of nav. kOk also when the
