@@ -65,6 +65,13 @@ TEST(HoverClosedLoop, Utm30lxHoldsTheSetPointWithinTwiceThePapersFigures) {
   EXPECT_LE(metric(f.metrics, "vel_err_mean_mps"), 0.04);
   EXPECT_EQ(metric(f.metrics, "heap_allocs_after_arm"), 0);
   EXPECT_EQ(metric(f.metrics, "poses_gated"), 0);
+  // The filter's own counts reach metrics.json: it predicted on every IMU sample and refused
+  // none of the simulator's input.
+  EXPECT_GT(metric(f.metrics, "nav.imu_samples"), 0);
+  EXPECT_GT(metric(f.metrics, "nav.pose_updates"), 0);
+  for (const char* refused : {"nav.imu_not_finite", "nav.imu_out_of_range", "nav.imu_time_backwards",
+                              "nav.meas_not_finite", "nav.meas_out_of_range", "nav.meas_future"})
+    EXPECT_EQ(metric(f.metrics, refused), 0) << refused;
 }
 
 TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {

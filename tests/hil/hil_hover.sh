@@ -21,6 +21,11 @@ grep -q "mission finished, phase landed" "$out/fw.stderr" || { echo "the firmwar
 # The firmware's own view of the link: frames arrived, none bad, no byte outside a frame.
 grep -Eq "link frames [1-9][0-9]*, bad CRC or length 0, skipped bytes 0, malformed 0" "$out/fw.stderr" ||
   { echo "the firmware's link report is missing or shows damage"; exit 1; }
+# Its filter's counts: it predicted and took poses, and refused none of the devices' input.
+grep -Eq "filter imu_samples [1-9][0-9]* imu_not_finite 0 imu_out_of_range 0 imu_time_backwards 0 .*pose_updates [1-9]" "$out/fw.stderr" ||
+  { echo "the firmware's filter report is missing or shows refused input"; exit 1; }
+grep -Eq "filter .* meas_not_finite 0 meas_out_of_range 0 .*meas_future 0 " "$out/fw.stderr" ||
+  { echo "the firmware's filter refused measurements"; exit 1; }
 python3 - "$out/metrics.json" <<'PY'
 import json, sys
 m = json.load(open(sys.argv[1]))

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "kestrel/core/alloc_guard.hpp"
+#include "kestrel/estimation/nav_filter.hpp"
 #include "kestrel/output/plot.hpp"
 #include "kestrel/output/tum_writer.hpp"
 #include "kestrel/sim/flight_recorder.hpp"
@@ -341,6 +342,11 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("scans_lost", c.scans_lost);
   out.emplace_back("map_restarts", c.map_restarts);
   out.emplace_back("setpoints_sent", c.setpoints_sent);
+  // The filter's own counts: what it refused and why (an out-of-range IMU sample, a measurement
+  // from the future, ...), so a flight that drifted can be told from one fed bad input.
+  const estimation::NavFilterCounters& nav_counters = stack_->filter().counters();
+  for (const estimation::NavFilterCounterField& f : estimation::kNavFilterCounterFields)
+    out.emplace_back(std::string("nav.") + f.name, nav_counters.*f.member);
   out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
   out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);
   // When each phase began (its first time): an explore phase that ended well before

@@ -23,6 +23,7 @@
 #include "kestrel/autonomy/autonomy_stack.hpp"
 #include "kestrel/control/controller_params.hpp"
 #include "kestrel/estimation/ekf_params.hpp"
+#include "kestrel/estimation/nav_filter.hpp"
 #include "kestrel/platform/linux/hil_client.hpp"
 #include "kestrel/platform/linux/hokuyo_scip.hpp"
 #include "kestrel/platform/linux/linux_clock.hpp"
@@ -253,6 +254,12 @@ int main(int argc, char** argv) {
   const platform::HilCounters& link = bridge.counters();
   std::fprintf(stderr, "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u\n",
                link.frames, link.crc_errors, link.skipped_bytes, link.malformed);
+  // The filter's counts: whether it refused input (and why) or drifted on good input.
+  std::fprintf(stderr, "kestrel-fw: filter");
+  const estimation::NavFilterCounters& nav = stack->filter().counters();
+  for (const estimation::NavFilterCounterField& f : estimation::kNavFilterCounterFields)
+    std::fprintf(stderr, " %s %u", f.name, nav.*f.member);
+  std::fprintf(stderr, "\n");
   for (std::size_t i = 0; i < s.task_count(); ++i)
     std::fprintf(stderr, "  task %-10s runs %8llu  mean %8.1f us  max %8lld us  misses %llu\n", s.spec(i).name,
                  static_cast<unsigned long long>(s.stats(i).runs), s.stats(i).mean_us(),

@@ -103,6 +103,37 @@ struct NavFilterCounters {
   uint32_t replayed_steps = 0;       // prediction steps re-run for them
 };
 
+// Every counter by name, for the tools that report them (kestrel-sim's metrics.json as
+// nav.NAME, kestrel-fw's exit report): one list, so a counter added above and not here fails
+// the size check below instead of going unreported.
+struct NavFilterCounterField {
+  const char* name;
+  uint32_t NavFilterCounters::*member;
+};
+inline constexpr std::array<NavFilterCounterField, 19> kNavFilterCounterFields{{
+    {"imu_samples", &NavFilterCounters::imu_samples},
+    {"imu_not_finite", &NavFilterCounters::imu_not_finite},
+    {"imu_out_of_range", &NavFilterCounters::imu_out_of_range},
+    {"imu_time_backwards", &NavFilterCounters::imu_time_backwards},
+    {"imu_gaps", &NavFilterCounters::imu_gaps},
+    {"pose_updates", &NavFilterCounters::pose_updates},
+    {"pose_rejected", &NavFilterCounters::pose_rejected},
+    {"altitude_updates", &NavFilterCounters::altitude_updates},
+    {"altitude_rejected", &NavFilterCounters::altitude_rejected},
+    {"at_rest_updates", &NavFilterCounters::at_rest_updates},
+    {"corrections", &NavFilterCounters::corrections},
+    {"corrections_rejected", &NavFilterCounters::corrections_rejected},
+    {"meas_not_finite", &NavFilterCounters::meas_not_finite},
+    {"meas_out_of_range", &NavFilterCounters::meas_out_of_range},
+    {"meas_too_old", &NavFilterCounters::meas_too_old},
+    {"meas_future", &NavFilterCounters::meas_future},
+    {"log_overflow", &NavFilterCounters::log_overflow},
+    {"replays", &NavFilterCounters::replays},
+    {"replayed_steps", &NavFilterCounters::replayed_steps},
+}};
+static_assert(sizeof(NavFilterCounters) == kNavFilterCounterFields.size() * sizeof(uint32_t),
+              "every NavFilterCounters member must be listed in kNavFilterCounterFields");
+
 class NavFilter {
  public:
   static constexpr std::size_t kHistory = 1024;
