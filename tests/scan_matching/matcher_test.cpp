@@ -56,7 +56,24 @@ struct PhaseCount {
   int scans = 0, keys = 0, degenerate = 0, bounded = 0;
   int keys_at_corridor_match = 0, keys_at_bounded_degenerate_match = 0;
   int last_key = -1;  // at() index of the phase's last key scan, -1: none
+  int first_corridor_match = -1;  // at() index of the phase's first corridor match, -1: none
   int degenerate_keys() const { return keys_at_corridor_match + keys_at_bounded_degenerate_match; }
+
+  // unbounded_m2: the variance of a match whose likely region runs off the slice
+  // (kUnboundedVarianceCells2 cells^2); "bounded" is below half of it.
+  void add(const ScanMatch& s, int index, float unbounded_m2) {
+    const bool key = (s.measurement.flags & match_flag::kKeyScan) != 0;
+    const bool is_degenerate = (s.measurement.flags & match_flag::kDegenerate) != 0;
+    const bool is_bounded = s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * unbounded_m2;
+    ++scans;
+    keys += key;
+    degenerate += is_degenerate;
+    bounded += is_bounded;
+    keys_at_corridor_match += key && is_degenerate && !is_bounded;
+    keys_at_bounded_degenerate_match += key && is_degenerate && is_bounded;
+    if (key) last_key = index;
+    if (is_degenerate && !is_bounded && first_corridor_match < 0) first_corridor_match = index;
+  }
 };
 
 class StillVehicle {
@@ -75,16 +92,7 @@ class StillVehicle {
     for (int k = 0; k < scans; ++k) {
       const ScanMatch s = rig_.m->process(test::cast_scan(pose_, walls, 1081, 4.712f, at(++index_)));
       EXPECT_TRUE(s.ok()) << index_;
-      const bool key = (s.measurement.flags & match_flag::kKeyScan) != 0;
-      const bool degenerate = (s.measurement.flags & match_flag::kDegenerate) != 0;
-      const bool bounded = s.measurement.covariance.topLeftCorner<2, 2>().trace() < 0.5f * unbounded_m2_;
-      ++c.scans;
-      c.keys += key;
-      c.degenerate += degenerate;
-      c.bounded += bounded;
-      c.keys_at_corridor_match += key && degenerate && !bounded;
-      c.keys_at_bounded_degenerate_match += key && degenerate && bounded;
-      if (key) c.last_key = index_;
+      c.add(s, index_, unbounded_m2_);
     }
     return c;
   }
@@ -193,6 +201,54 @@ TEST(ScanMatcher, KeyScanAtADegenerateMatchInsideTheSliceReArmsTheCorridorRule) 
   EXPECT_EQ(reopened.keys, 1);
   EXPECT_EQ(reopened.keys_at_corridor_match, 1);
   EXPECT_EQ(reopened.last_key, west.last_key + 40);  // the interval after it, 1 s at 40 Hz
+}
+
+// From one corridor into another round a corner: the rule stays off only while the newest key
+// scan is a corridor's, and the corner re-arms it. The vehicle flies 4 m at 1 m/s east along a
+// corridor (walls y = +-1), turns left in place where it meets a corridor going north (walls
+// x = +-1), and flies 5 m north. At the corner the matches are bounded, and the key scan
+// taken there re-arms the rule, so the north corridor gets its key scan from the rule at its
+// first corridor match, as a corridor entered from a room does; without the rule it gets one
+// later, from another key-scan rule. (Straight from one corridor into another with no bounded
+// match between them, the rule would stay off: scan_matcher.cpp.)
+TEST(ScanMatcher, RoundACornerIntoAnotherCorridorTheRuleReArms) {
+  const std::vector<test::Wall> corner{{-30, -1, 1, -1}, {-30, 1, -1, 1}, {1, -1, 1, 30}, {-1, 1, -1, 30}};
+  constexpr float kStep = 0.025f;  // 1 m/s at 40 Hz
+  PhaseCount turn[2], north[2];
+  for (int on = 0; on < 2; ++on) {
+    Params p;
+    p.degenerate_key_interval_s = on ? 1.0f : 0.0f;
+    Rig r(p);
+    const float unbounded_m2 = static_cast<float>(kUnboundedVarianceCells2) * p.resolution_m * p.resolution_m;
+    int i = 0;
+    ASSERT_TRUE(r.m->process(test::cast_scan({-4, 0, 0}, corner, 1081, 4.712f, at(i))).ok());
+    PhaseCount east;
+    for (int k = 1; k <= 160; ++k) {
+      ++i;
+      east.add(r.m->process(test::cast_scan({-4 + kStep * k, 0, 0}, corner, 1081, 4.712f, at(i))), i, unbounded_m2);
+    }
+    for (int k = 1; k <= 40; ++k) {
+      ++i;
+      turn[on].add(r.m->process(test::cast_scan({0, 0, 1.5708f * k / 40}, corner, 1081, 4.712f, at(i))), i, unbounded_m2);
+    }
+    for (int k = 1; k <= 200; ++k) {
+      ++i;
+      north[on].add(r.m->process(test::cast_scan({0, kStep * k, 1.5708f}, corner, 1081, 4.712f, at(i))), i, unbounded_m2);
+    }
+    EXPECT_GT(east.degenerate, east.scans / 2) << on;
+    EXPECT_GT(north[on].degenerate, north[on].scans / 2) << on;
+  }
+  for (int on = 0; on < 2; ++on) {
+    EXPECT_GE(turn[on].keys, 1) << on;  // the corner joins the map...
+    EXPECT_EQ(turn[on].keys_at_corridor_match, 0) << on;  // ...at matches that are not a corridor's
+    EXPECT_EQ(north[on].keys, 1) << on;
+    EXPECT_EQ(north[on].keys_at_corridor_match, 1) << on;
+  }
+  // The rule's key scan: at the north corridor's first corridor match, more than 1 s after the
+  // corner's key scan. Without the rule the corridor joins the map later, by another rule.
+  EXPECT_GT(north[1].first_corridor_match, turn[1].last_key + 40);
+  EXPECT_EQ(north[1].last_key, north[1].first_corridor_match);
+  EXPECT_GT(north[0].last_key, north[0].first_corridor_match);
 }
 
 // Flying 1 m/s through the room: the pose follows within a few millimetres, no allocation.
