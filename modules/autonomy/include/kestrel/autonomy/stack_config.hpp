@@ -41,9 +41,10 @@ inline scan_matching::Params vehicle_matcher_params() {
   p.join_max_m = 1.0f;
   // degenerate_key_interval_s stays 0 (off) for now: at 1 s it mends gt-building's corridor,
   // where the local map could hold only the slice seen through a door (UTM-30LX, 30 minutes,
-  // seeds 1-60: 40 flights land at home, 27 without; 52 enter every room, 53 without), but every
-  // flight the README reports was flown without it, and the 1 m/s hallway flight ends further
-  // off with it (README, Exploration; modules/exploration/EXPERIMENTS.md). kestrel-sim:
+  // seeds 1-60: 40 flights land at home, 27 without; 52 enter every room, 53 without), but its
+  // key scans take in the error along a corridor: the 1 m/s hallway flight ends further off,
+  // and iarc-arena's waypoint tour touches room B's door frame on 6 of 20 seeds with it, none
+  // without (README, Exploration; modules/exploration/EXPERIMENTS.md). kestrel-sim:
   // --mission-arg corridor_keys_s=1.
   return p;
 }
