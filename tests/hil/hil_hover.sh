@@ -17,7 +17,7 @@ wait $sim_pid || sim_rc=$?
 cat "$out/fw.stderr"
 [ $fw_rc -eq 0 ] || { echo "kestrel-fw failed ($fw_rc)"; exit 1; }
 [ $sim_rc -eq 0 ] || { echo "kestrel-sim failed ($sim_rc)"; cat "$out/sim.stderr"; exit 1; }
-grep -q "mission finished, phase landed" "$out/fw.stderr" || { echo "the firmware did not land"; exit 1; }
+grep -q "mission finished, phase landed;" "$out/fw.stderr" || { echo "the firmware did not land"; exit 1; }
 # The firmware's own view of the link: frames arrived, none bad, no byte outside a frame.
 grep -Eq "link frames [1-9][0-9]*, bad CRC or length 0, skipped bytes 0, malformed 0" "$out/fw.stderr" ||
   { echo "the firmware's link report is missing or shows damage"; exit 1; }

@@ -117,6 +117,30 @@ TEST(MissionController, RestsOnTheGroundForThePreflightTimeFirst) {
   EXPECT_TRUE(r.mc.wants_armed());
 }
 
+// GIVEN a rest on the ground WHEN the estimate goes stale part-way (a device fell silent: the
+// stack tells the mission so, sensor_watchdog.hpp) THEN nothing takes off on it: the vehicle
+// stays on the ground, and the rest starts again, preflight_s from when the estimate is back.
+// Before, the rest counted from the first estimate only, so a laser gone quiet on the ground
+// still let the vehicle take off when the time was up.
+TEST(MissionController, AStaleEstimateOnTheGroundStartsThePreflightAgain) {
+  MissionRun r;
+  MissionParams p;
+  p.preflight_s = 2.0f;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
+  for (int i = 0; i < 60; ++i) r.step();  // 1.5 s of the rest
+  r.v.nav.valid = false;
+  for (int i = 0; i < 200; ++i) {  // 5 s stale, longer than the whole rest
+    const GuidanceSetpoint s = r.step();
+    EXPECT_EQ(r.mc.phase(), Phase::kIdle);
+    EXPECT_FALSE(r.mc.wants_armed());
+    EXPECT_TRUE(s.position_m.allFinite());
+  }
+  r.v.nav.valid = true;
+  const TimeUs back = r.t + Duration::from_s(MissionRun::kDt);
+  ASSERT_TRUE(r.run_until(Phase::kTakeoff, 5));
+  EXPECT_NEAR((r.t - back).seconds(), 2.0, 0.03);
+}
+
 TEST(MissionController, WaypointsAreVisitedInOrderWithHolds) {
   MissionRun r;
   StaticVector<Waypoint, 4> wps;

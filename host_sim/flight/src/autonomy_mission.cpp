@@ -341,6 +341,8 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("map_rebuilds", c.map_rebuilds);
   out.emplace_back("scans_lost", c.scans_lost);
   out.emplace_back("map_restarts", c.map_restarts);
+  out.emplace_back("imu_silences", stack_->silences().imu);
+  out.emplace_back("scan_silences", stack_->silences().scan);
   out.emplace_back("setpoints_sent", c.setpoints_sent);
   // The filter's own counts: what it refused and why (an out-of-range IMU sample, a measurement
   // from the future, ...), so a flight that drifted can be told from one fed bad input.

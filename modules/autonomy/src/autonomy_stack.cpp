@@ -26,6 +26,11 @@ Status AutonomyStack::configure(const StackConfig& c) {
     configure_error_ = "controller parameters";
     return Status::kInvalidArgument;
   }
+  if (!c.sensor_timeouts.valid()) {
+    configure_error_ = "sensor timeouts";
+    return Status::kInvalidArgument;
+  }
+  watchdog_.configure(c.sensor_timeouts);
   if (mission_.configure(c.mission_kind, c.mission, &c.waypoints) != Status::kOk) {
     configure_error_ = "mission parameters or waypoints";
     return Status::kInvalidArgument;
@@ -76,8 +81,10 @@ void AutonomyStack::background_step() {
   if (matcher_.local_map().rebuild() == Status::kOk) ++counters_.map_rebuilds;
 }
 
-void AutonomyStack::run_imu(void* self, TimeUs) { static_cast<AutonomyStack*>(self)->imu_task(); }
-void AutonomyStack::run_scan_match(void* self, TimeUs) { static_cast<AutonomyStack*>(self)->scan_task(); }
+void AutonomyStack::run_imu(void* self, TimeUs release) { static_cast<AutonomyStack*>(self)->imu_task(release); }
+void AutonomyStack::run_scan_match(void* self, TimeUs release) {
+  static_cast<AutonomyStack*>(self)->scan_task(release);
+}
 void AutonomyStack::run_guidance(void* self, TimeUs release) {
   static_cast<AutonomyStack*>(self)->guidance_task(release);
 }
@@ -85,7 +92,7 @@ void AutonomyStack::run_control(void* self, TimeUs release) {
   static_cast<AutonomyStack*>(self)->control_task(release);
 }
 
-void AutonomyStack::imu_task() {
+void AutonomyStack::imu_task(TimeUs now) {
   // Attitude first: the filter rotates the samples that follow with it.
   FlightStatus status;
   if (dev_.autopilot.poll_status(status) == Status::kOk) filter_.set_attitude(status);
@@ -100,7 +107,11 @@ void AutonomyStack::imu_task() {
     }
     ++counters_.imu_samples;
     const Status p = filter_.predict(s);
-    if (p != Status::kOk && p != Status::kNoData) ++counters_.imu_errors;
+    if (p == Status::kOk || p == Status::kNoData) {
+      watchdog_.imu_alive(now);
+    } else {
+      ++counters_.imu_errors;
+    }
   }
   if (dev_.altimeter != nullptr) {
     AltimeterSample a;
@@ -112,7 +123,7 @@ void AutonomyStack::imu_task() {
   nav_ = filter_.state();
 }
 
-void AutonomyStack::scan_task() {
+void AutonomyStack::scan_task(TimeUs now) {
   const Status st = dev_.laser.poll(scan_);
   if (st == Status::kNoData) return;
   if (st != Status::kOk) {
@@ -129,6 +140,10 @@ void AutonomyStack::scan_task() {
   const scan_matching::PosePrior* prior_ptr = scan_prior_from_nav(nav_, scan_.stamp, prior) ? &prior : nullptr;
   last_match_ = matcher_.process(scan_, prior_ptr);
   new_match_ = true;
+  // The laser is alive while it delivers scans the matcher could use: a scan with too few
+  // returns (nothing within reach) is the world's silence, not the device's.
+  namespace mf = scan_matching::match_flag;
+  if ((last_match_.measurement.flags & (mf::kBadGeometry | mf::kTimeBackwards)) == 0) watchdog_.scan_alive(now);
   if (!last_match_.ok()) {
     ++counters_.scans_rejected;
     return;
@@ -155,7 +170,8 @@ void AutonomyStack::guidance_task(TimeUs now) {
     guidance_scan_fresh_ = false;
     ++counters_.guidance_steps;
   }
-  setpoint_ = mission_.step(now, nav_, explorer_ != nullptr ? &explorer_out_ : nullptr);
+  // The mission sees the estimate as stale while a device it stands on is silent: its failsafe.
+  setpoint_ = mission_.step(now, watchdog_.for_mission(nav_, now), explorer_ != nullptr ? &explorer_out_ : nullptr);
   // Flying home and landing there, the explorer's approach limiter bounds the mission's
   // velocity set-point against the newest scan, matched or not (return_velocity_bound.hpp).
   const bool homing = mission_.phase() == mission::Phase::kReturn || mission_.phase() == mission::Phase::kLand;
@@ -177,9 +193,10 @@ void AutonomyStack::control_task(TimeUs now) {
   }
   if (!armed_) return;
   control::ControlOutput out = controller_.step(nav_, setpoint_);
-  if (mission_.phase() == mission::Phase::kFailsafeLand && !nav_.valid) {
-    // Blind: the estimate cannot steer, so level the vehicle and let it sink gently, at a
-    // small constant downward acceleration, until the mission's descent timer ends.
+  if (mission_.phase() == mission::Phase::kFailsafeLand && (!nav_.valid || !watchdog_.imu_fresh(now))) {
+    // Blind: the estimate cannot steer (none yet, or frozen with the IMU silent), so level the
+    // vehicle and let it sink gently, at a small constant downward acceleration, until the
+    // mission's descent timer ends.
     constexpr float kBlindDescentAccel = -0.3f;  // m/s^2
     out = controller_.safe_output(now, control::control_flag::kInvalidNav);
     out.command.thrust = controller_.params().model.thrust.command_for(kBlindDescentAccel);

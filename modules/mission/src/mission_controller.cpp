@@ -124,6 +124,12 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
 
   switch (phase_) {
     case Phase::kIdle:
+      // The rest before take-off is preflight_s of valid estimate without a break: an estimate
+      // gone stale on the ground (a silent device) starts it again, and nothing takes off on it.
+      if (!estimate_ok) {
+        first_estimate_ = t;
+        return hold(now, Eigen::Vector3f::Zero(), 0);
+      }
       if ((t - first_estimate_).seconds() < params_.preflight_s) {
         return hold(now, {nav.position_m.x(), nav.position_m.y(), nav.position_m.z()}, nav.heading_rad);
       }

@@ -247,9 +247,10 @@ int main(int argc, char** argv) {
   background.join();
 
   const Scheduler& s = stack->scheduler();
-  std::fprintf(stderr, "kestrel-fw: mission %s, phase %s; scans %u matched %u\n",
+  std::fprintf(stderr, "kestrel-fw: mission %s, phase %s; scans %u matched %u; silences imu %u laser %u\n",
                stack->finished() ? "finished" : "stopped", mission::to_string(stack->mission().phase()),
-               stack->counters().scans, stack->counters().scans_matched);
+               stack->counters().scans, stack->counters().scans_matched, stack->silences().imu,
+               stack->silences().scan);
   // The link's health, for a bench test: damaged frames and bytes lost between frames.
   const platform::HilCounters& link = bridge.counters();
   std::fprintf(stderr, "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u\n",

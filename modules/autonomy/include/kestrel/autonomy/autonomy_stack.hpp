@@ -16,6 +16,7 @@
 #include "kestrel/autonomy/return_velocity_bound.hpp"
 #include "kestrel/autonomy/scan_prior.hpp"
 #include "kestrel/autonomy/stack_config.hpp"
+#include "kestrel/autonomy/sensor_watchdog.hpp"
 #include "kestrel/autonomy/task_table.hpp"
 #include "kestrel/control/controller.hpp"
 #include "kestrel/core/scheduler.hpp"
@@ -92,6 +93,8 @@ class AutonomyStack {
   const scan_matching::ScanMatcher& matcher() const { return matcher_; }
   const Scheduler& scheduler() const { return scheduler_; }
   const StackCounters& counters() const { return counters_; }
+  // How often the IMU and the laser fell silent for longer than their timeouts.
+  const SilenceCounters& silences() const { return watchdog_.counters(); }
   bool finished() const { return mission_.finished(); }
 
  private:
@@ -99,8 +102,8 @@ class AutonomyStack {
   static void run_scan_match(void* self, TimeUs release);
   static void run_guidance(void* self, TimeUs release);
   static void run_control(void* self, TimeUs release);
-  void imu_task();
-  void scan_task();
+  void imu_task(TimeUs now);
+  void scan_task(TimeUs now);
   void guidance_task(TimeUs now);
   void control_task(TimeUs now);
 
@@ -127,6 +130,7 @@ class AutonomyStack {
   LaserScan newest_scan_;      // the newest scan, matched or not: the flight home's limiter
   bool newest_scan_fresh_ = false;
   ReturnVelocityBound return_bound_;  // the flight home's velocity, bounded on the newest scan
+  SensorWatchdog watchdog_;           // whether the IMU and the laser still talk
   mission::ExplorerOutput explorer_out_;  // the explorer's newest set-point
   scan_matching::ScanMatch last_match_;
   bool new_match_ = false;

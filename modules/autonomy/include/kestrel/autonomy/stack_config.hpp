@@ -1,6 +1,7 @@
 #pragma once
 // Everything the autonomy stack is configured with, one struct per module (each with its
 // defaults and units inline in its own header), plus what ties them together.
+#include "kestrel/autonomy/sensor_watchdog.hpp"
 #include "kestrel/control/controller_params.hpp"
 #include "kestrel/core/se2.hpp"
 #include "kestrel/core/static_vector.hpp"
@@ -64,6 +65,9 @@ struct StackConfig {
   // Apply each scan-matcher pose at the time its scan was taken (the EKF's state history), or,
   // false, as if taken on arrival: the comparison of paper 000 Figure 3b.
   bool use_measurement_time = true;
+  // How long the IMU or the laser may stay silent before the mission is told the estimate is
+  // stale (and its failsafe lands the vehicle): sensor_watchdog.hpp.
+  SensorTimeouts sensor_timeouts;
 };
 
 }  // namespace kestrel::autonomy
