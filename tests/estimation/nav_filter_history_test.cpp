@@ -47,6 +47,37 @@ TEST(NavFilterHistory, DelayedMeasurementsGiveTheInOrderResult) {
   expect_same_state(*in_order, *late, 1e-5f);
 }
 
+// GIVEN IMU samples taken in before the first pose, all of them later than the pose's stamp
+// (the laser's first beam came first: on a board where both start together), THEN the filter
+// starts its history at the pose and the next sample is no gap (a gap is time between samples):
+// no history restart, and the next pose is taken. Before, the next sample's time was measured
+// from the pose's, looked like a gap, restarted the history, and the next pose was refused as
+// older than it (seen in kestrel-sim with 0.2 s late scans: one gap, four poses refused).
+TEST(NavFilterHistory, FirstPoseOlderThanEveryStoredSampleStartsTheHistory) {
+  auto f = std::make_unique<NavFilter>(EkfParams{});
+  auto sample = [](int64_t ms) {
+    ImuSample s;
+    s.stamp = TimeUs::from_us(ms * 1000);
+    s.accel_mps2 = {0.0f, 0.0f, 9.81f};
+    return s;
+  };
+  for (int64_t ms = 10; ms <= 60; ms += 5) EXPECT_EQ(f->predict(sample(ms)), Status::kNoData);
+  PoseMeasurement2 m;
+  m.stamp = TimeUs::from_us(0);
+  m.pose = {1.0f, 2.0f, 0.5f};
+  m.covariance = Eigen::Vector3f(1e-4f, 1e-4f, 1e-4f).asDiagonal();
+  ASSERT_EQ(f->update_pose(m), Status::kOk);
+  for (int64_t ms = 65; ms <= 150; ms += 5) EXPECT_EQ(f->predict(sample(ms)), Status::kOk) << ms;
+  m.stamp = TimeUs::from_us(100'000);
+  EXPECT_EQ(f->update_pose(m), Status::kOk);
+  EXPECT_EQ(f->counters().imu_gaps, 0u);
+  EXPECT_EQ(f->counters().meas_too_old, 0u);
+  EXPECT_EQ(f->counters().pose_updates, 2u);
+  EXPECT_NEAR(f->state().position_m.x(), 1.0f, 1e-3f);
+  EXPECT_NEAR(f->state().position_m.y(), 2.0f, 1e-3f);
+  EXPECT_EQ(f->state().stamp, TimeUs::from_us(150'000));
+}
+
 // GIVEN measurements delivered out of order (a later one before an earlier one),
 // THEN the result is the same as in order.
 TEST(NavFilterHistory, OutOfOrderArrivalGivesTheInOrderResult) {

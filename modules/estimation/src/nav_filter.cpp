@@ -132,6 +132,13 @@ Status NavFilter::predict(const ImuSample& imu) {
     ++counters_.imu_time_backwards;
     return Status::kTimeJump;
   }
+  // A gap is time between IMU samples. The newest slot is normally the previous sample, but
+  // right after the first pose it may be the pose's time, older than the samples taken in
+  // before it (the laser's first beam came first, as on a board where both start together):
+  // measured from there, the next sample looked like a gap, restarted the history and made the
+  // next pose too old.
+  const bool had_sample = have_imu_;
+  const Duration since_previous_sample = imu.stamp - last_imu_t_;
   have_imu_ = true;
   last_imu_t_ = imu.stamp;
   Input in = attitude_;
@@ -150,7 +157,8 @@ Status NavFilter::predict(const ImuSample& imu) {
     return Status::kNoData;
   }
   const float dt = static_cast<float>((imu.stamp - slot(count_ - 1).t).seconds());
-  if (dt > params_.max_imu_gap_s) {
+  const float gap = had_sample ? static_cast<float>(since_previous_sample.seconds()) : dt;
+  if (gap > params_.max_imu_gap_s) {
     // Coast over the gap at constant velocity (no trustworthy input), then restart the
     // history here: nothing before the gap can be replayed across it.
     ++counters_.imu_gaps;
