@@ -176,9 +176,8 @@ struct Rig {
   std::unique_ptr<AutonomyStack> stack;
 
   // The devices' streams: each measures at its rate; a silent device measures nothing. The IMU
-  // has a sample at the first scan's stamp: the filter starts its history there (a first pose
-  // older than every stored sample drops them, NavFilter::initialise, and the next sample is
-  // then a gap that restarts the history, which is the filter's business, not the stack's).
+  // has a sample at the first scan's stamp, so the filter's history starts there (the case of
+  // a first pose older than every stored sample is NavFilterHistory's).
   bool laser_on = true, imu_on = true;
   TimeUs next_scan = kT0, next_imu = kT0, next_alt = kT0;
   TimeUs last_scan_stamp;
@@ -614,10 +613,11 @@ TEST_F(AutonomyStackTest, AnAutopilotRefusingToArmIsRetriedAndSentNothingUntilIt
 // ---- Silent devices -----------------------------------------------------------------------
 
 // An IMU that falls silent in flight freezes the estimate: the filter's state stays valid and
-// finite (and it refuses the scan poses as from the future). The stack tells the mission the
-// estimate is stale once no sample has come for sensor_timeouts.imu_s (0.1 s), and the mission
-// fails safe estimate_timeout_s (0.5 s) later; with the IMU gone the controller cannot steer on
-// the frozen estimate, so it flies blind: level, below hover thrust. Before the watchdog the
+// finite (and it refuses the scan poses as from the future). Once the IMU task has polled and
+// found nothing for sensor_timeouts.imu_s (0.1 s), the controller stops steering on the frozen
+// estimate (level, hover thrust) and the mission is told the estimate is stale; its failsafe
+// begins estimate_timeout_s (0.5 s) later, and the descent is blind: level, at -0.3 m/s^2 for
+// a second, then nearly at hover thrust, so it reaches the floor slowly. Before the watchdog the
 // mission flew on the frozen estimate without end (found by this test).
 TEST_F(AutonomyStackTest, AnImuThatFallsSilentInFlightLeadsToABlindFailsafeLanding) {
   ASSERT_EQ(r.configure_and_start(), Status::kOk);
@@ -625,19 +625,30 @@ TEST_F(AutonomyStackTest, AnImuThatFallsSilentInFlightLeadsToABlindFailsafeLandi
   r.run_for(Duration::from_ms(200));
   ASSERT_NE(r.stack->mission().phase(), Phase::kFailsafeLand);
   EXPECT_EQ(r.stack->silences().imu, 0u);
+  EXPECT_EQ(r.stack->control_flags() & control::control_flag::kInvalidNav, 0u);
+  const float hover = Rig::config().controller.model.thrust.command_for(0.0f);
   r.imu_on = false;
-  r.run_for(Duration::from_ms(550));  // 0.1 s to stale, not yet 0.5 s more
+  r.run_for(Duration::from_ms(150));  // stale, the failsafe not yet begun: level at hover thrust
   EXPECT_NE(r.stack->mission().phase(), Phase::kFailsafeLand);
-  r.run_for(Duration::from_ms(100));
-  EXPECT_TRUE(r.stack->nav().valid);  // the filter's own view: frozen, not invalid
-  EXPECT_EQ(r.stack->mission().phase(), Phase::kFailsafeLand) << mission::to_string(r.stack->mission().phase());
-  EXPECT_EQ(r.stack->silences().imu, 1u);
-  EXPECT_EQ(r.stack->silences().scan, 0u);
-  r.run_for(Duration::from_ms(50));
   EXPECT_NE(r.stack->control_flags() & control::control_flag::kInvalidNav, 0u);
   EXPECT_EQ(r.autopilot.last.pitch_rad, 0.0f);
   EXPECT_EQ(r.autopilot.last.roll_rad, 0.0f);
-  EXPECT_LT(r.autopilot.last.thrust, 0.5f);  // hover is 0.5: it sinks
+  EXPECT_FLOAT_EQ(r.autopilot.last.thrust, hover);
+  r.run_for(Duration::from_ms(400));  // 0.55 s: not yet 0.1 s + 0.5 s
+  EXPECT_NE(r.stack->mission().phase(), Phase::kFailsafeLand);
+  r.run_for(Duration::from_ms(100));
+  EXPECT_TRUE(r.stack->nav().valid);  // the filter's own view: frozen, not invalid
+  ASSERT_EQ(r.stack->mission().phase(), Phase::kFailsafeLand) << mission::to_string(r.stack->mission().phase());
+  EXPECT_EQ(r.stack->silences().imu, 1u);
+  EXPECT_EQ(r.stack->silences().scan, 0u);
+  r.run_for(Duration::from_ms(500));  // inside the first second of the descent: sinking
+  const float sinking = r.autopilot.last.thrust;
+  EXPECT_LT(sinking, hover);
+  EXPECT_EQ(r.autopilot.last.pitch_rad, 0.0f);
+  r.run_for(Duration::from_ms(1000));  // then nearly at hover thrust
+  EXPECT_GT(r.autopilot.last.thrust, sinking);
+  EXPECT_LT(r.autopilot.last.thrust, hover);
+  EXPECT_EQ(r.stack->mission().phase(), Phase::kFailsafeLand);
 }
 
 // A laser that falls silent in flight leaves the filter on the IMU alone, with no position fix.
@@ -681,6 +692,7 @@ TEST_F(AutonomyStackTest, OnlyMalformedScansAreASilentLaserAndEmptyScansAreNot) 
     EXPECT_EQ(rig.stack->mission().phase() == Phase::kFailsafeLand, garbage)
         << garbage << " " << mission::to_string(rig.stack->mission().phase());
     EXPECT_EQ(rig.stack->silences().scan, garbage ? 1u : 0u);
+    EXPECT_EQ(rig.autopilot.unflyable, 0u) << garbage;  // the fixture's check covers r only
   }
 }
 

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace kestrel::autonomy {
 namespace {
 
@@ -26,31 +28,53 @@ SensorWatchdog configured() {
 // Nothing heard yet is silence: the mission gets no estimate before both devices have talked.
 TEST(SensorWatchdog, NothingHeardYetIsSilence) {
   SensorWatchdog w = configured();
-  EXPECT_FALSE(w.imu_fresh(ms(0)));
-  EXPECT_FALSE(w.scan_fresh(ms(0)));
-  EXPECT_FALSE(w.for_mission(valid_nav(), ms(0)).valid);
-  w.imu_alive(ms(0));
-  EXPECT_FALSE(w.for_mission(valid_nav(), ms(1)).valid);
-  w.scan_alive(ms(1));
-  EXPECT_TRUE(w.for_mission(valid_nav(), ms(2)).valid);
+  w.imu_polled(ms(0));
+  w.scan_polled(ms(0));
+  EXPECT_FALSE(w.imu_fresh());
+  EXPECT_FALSE(w.scan_fresh());
+  EXPECT_FALSE(w.for_mission(valid_nav()).valid);
+  w.imu_alive(ms(1));
+  EXPECT_FALSE(w.for_mission(valid_nav()).valid);
+  w.scan_alive(ms(2));
+  EXPECT_TRUE(w.for_mission(valid_nav()).valid);
   EXPECT_EQ(w.counters().imu + w.counters().scan, 0u);  // never fresh, so never fell silent
 }
 
-// A device is fresh up to its timeout after the last sample, inclusive, and silent after.
-TEST(SensorWatchdog, EachDeviceIsFreshUpToItsTimeout) {
+// A device is silent when its own task has polled and found nothing usable for longer than its
+// timeout (inclusive up to it).
+TEST(SensorWatchdog, EachDeviceIsSilentOncePolledEmptyPastItsTimeout) {
   SensorWatchdog w = configured();
   w.imu_alive(ms(1000));
   w.scan_alive(ms(1000));
-  EXPECT_TRUE(w.imu_fresh(ms(1100)));
-  EXPECT_FALSE(w.imu_fresh(ms(1101)));
-  EXPECT_TRUE(w.scan_fresh(ms(1500)));
-  EXPECT_FALSE(w.scan_fresh(ms(1501)));
+  w.imu_polled(ms(1100));
+  EXPECT_TRUE(w.imu_fresh());
+  w.imu_polled(ms(1101));
+  EXPECT_FALSE(w.imu_fresh());
+  w.scan_polled(ms(1500));
+  EXPECT_TRUE(w.scan_fresh());
+  w.scan_polled(ms(1501));
+  EXPECT_FALSE(w.scan_fresh());
   SensorWatchdog custom;
   custom.configure(SensorTimeouts{0.02f, 2.0f});
   custom.imu_alive(ms(0));
   custom.scan_alive(ms(0));
-  EXPECT_FALSE(custom.imu_fresh(ms(21)));
-  EXPECT_TRUE(custom.scan_fresh(ms(2000)));
+  custom.imu_polled(ms(21));
+  custom.scan_polled(ms(2000));
+  EXPECT_FALSE(custom.imu_fresh());
+  EXPECT_TRUE(custom.scan_fresh());
+}
+
+// A loop that is late is not a silent device: until the device's task polls again, however
+// long that takes, nothing says the device fell quiet, and a poll that finds samples waiting
+// makes it fresh.
+TEST(SensorWatchdog, ALateLoopIsNoSilence) {
+  SensorWatchdog w = configured();
+  w.imu_alive(ms(0));
+  w.scan_alive(ms(0));
+  EXPECT_TRUE(w.for_mission(valid_nav()).valid);  // asked at any later time: nothing polled
+  w.imu_alive(ms(400));                           // the IMU task ran 0.4 s late and found samples
+  EXPECT_TRUE(w.imu_fresh());
+  EXPECT_EQ(w.counters().imu, 0u);
 }
 
 // The mission's estimate is the filter's, with valid cleared while either device is silent;
@@ -61,29 +85,36 @@ TEST(SensorWatchdog, TheMissionsEstimateIsInvalidWhileEitherDeviceIsSilent) {
   n.position_m = {1, 2, 3};
   w.imu_alive(ms(0));
   w.scan_alive(ms(0));
-  const NavState ok = w.for_mission(n, ms(50));
+  const NavState ok = w.for_mission(n);
   EXPECT_TRUE(ok.valid);
   EXPECT_EQ(ok.position_m, n.position_m);
-  EXPECT_FALSE(w.for_mission(n, ms(150)).valid);  // the IMU
-  w.imu_alive(ms(150));
-  EXPECT_TRUE(w.for_mission(n, ms(200)).valid);
-  EXPECT_FALSE(w.for_mission(n, ms(600)).valid);  // the laser
-  w.imu_alive(ms(600));
-  w.scan_alive(ms(600));
+  w.imu_polled(ms(150));
+  EXPECT_FALSE(w.for_mission(n).valid);  // the IMU
+  w.imu_alive(ms(160));
+  w.scan_polled(ms(600));
+  EXPECT_FALSE(w.for_mission(n).valid);  // the laser
+  w.scan_alive(ms(610));
+  EXPECT_TRUE(w.for_mission(n).valid);
   NavState uninitialised = n;
   uninitialised.valid = false;
-  EXPECT_FALSE(w.for_mission(uninitialised, ms(601)).valid);
+  EXPECT_FALSE(w.for_mission(uninitialised).valid);
 }
 
 // Each fall into silence is counted once, however often the watchdog is asked during it.
 TEST(SensorWatchdog, EachSilenceIsCountedOnce) {
   SensorWatchdog w = configured();
-  w.imu_alive(ms(0));
-  w.scan_alive(ms(0));
   for (int t = 0; t <= 2000; t += 5) {
-    if (t < 300 || t > 700) w.imu_alive(ms(t));  // one IMU silence
-    if (t < 1000) w.scan_alive(ms(t));           // the laser gone for good
-    (void)w.for_mission(valid_nav(), ms(t));
+    if (t < 300 || t > 700) {  // one IMU silence
+      w.imu_alive(ms(t));
+    } else {
+      w.imu_polled(ms(t));
+    }
+    if (t < 1000) {  // the laser gone for good
+      w.scan_alive(ms(t));
+    } else {
+      w.scan_polled(ms(t));
+    }
+    (void)w.for_mission(valid_nav());
   }
   EXPECT_EQ(w.counters().imu, 1u);
   EXPECT_EQ(w.counters().scan, 1u);
@@ -95,13 +126,18 @@ TEST(SensorWatchdog, AClockSteppingBackNeitherIsNorHidesASilence) {
   SensorWatchdog w = configured();
   w.imu_alive(ms(3'600'000));
   w.scan_alive(ms(3'600'000));
-  EXPECT_TRUE(w.for_mission(valid_nav(), ms(0)).valid);
-  EXPECT_TRUE(w.for_mission(valid_nav(), ms(100)).valid);
-  EXPECT_FALSE(w.for_mission(valid_nav(), ms(101)).valid);  // the IMU, silent since the step
+  w.imu_polled(ms(0));
+  w.scan_polled(ms(0));
+  EXPECT_TRUE(w.for_mission(valid_nav()).valid);
+  w.imu_polled(ms(100));
+  EXPECT_TRUE(w.for_mission(valid_nav()).valid);
+  w.imu_polled(ms(101));
+  EXPECT_FALSE(w.for_mission(valid_nav()).valid);  // the IMU, silent since the step
   EXPECT_EQ(w.counters().imu, 1u);
   w.imu_alive(ms(200));
   w.scan_alive(ms(200));
-  EXPECT_FALSE(w.for_mission(valid_nav(), ms(3'800'000)).valid);
+  w.imu_polled(ms(3'800'000));
+  EXPECT_FALSE(w.for_mission(valid_nav()).valid);
 }
 
 TEST(SensorWatchdog, TimeoutsOutsideTheirRangeAreInvalid) {

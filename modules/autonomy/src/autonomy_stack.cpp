@@ -93,6 +93,7 @@ void AutonomyStack::run_control(void* self, TimeUs release) {
 }
 
 void AutonomyStack::imu_task(TimeUs now) {
+  watchdog_.imu_polled(now);
   // Attitude first: the filter rotates the samples that follow with it.
   FlightStatus status;
   if (dev_.autopilot.poll_status(status) == Status::kOk) filter_.set_attitude(status);
@@ -124,6 +125,7 @@ void AutonomyStack::imu_task(TimeUs now) {
 }
 
 void AutonomyStack::scan_task(TimeUs now) {
+  watchdog_.scan_polled(now);
   const Status st = dev_.laser.poll(scan_);
   if (st == Status::kNoData) return;
   if (st != Status::kOk) {
@@ -171,7 +173,7 @@ void AutonomyStack::guidance_task(TimeUs now) {
     ++counters_.guidance_steps;
   }
   // The mission sees the estimate as stale while a device it stands on is silent: its failsafe.
-  setpoint_ = mission_.step(now, watchdog_.for_mission(nav_, now), explorer_ != nullptr ? &explorer_out_ : nullptr);
+  setpoint_ = mission_.step(now, watchdog_.for_mission(nav_), explorer_ != nullptr ? &explorer_out_ : nullptr);
   // Flying home and landing there, the explorer's approach limiter bounds the mission's
   // velocity set-point against the newest scan, matched or not (return_velocity_bound.hpp).
   const bool homing = mission_.phase() == mission::Phase::kReturn || mission_.phase() == mission::Phase::kLand;
@@ -193,13 +195,24 @@ void AutonomyStack::control_task(TimeUs now) {
   }
   if (!armed_) return;
   control::ControlOutput out = controller_.step(nav_, setpoint_);
-  if (mission_.phase() == mission::Phase::kFailsafeLand && (!nav_.valid || !watchdog_.imu_fresh(now))) {
-    // Blind: the estimate cannot steer (none yet, or frozen with the IMU silent), so level the
-    // vehicle and let it sink gently, at a small constant downward acceleration, until the
-    // mission's descent timer ends.
-    constexpr float kBlindDescentAccel = -0.3f;  // m/s^2
+  if (!nav_.valid || !watchdog_.imu_fresh()) {
+    // Blind: no estimate to steer on (none yet, or frozen with the IMU silent), so level the
+    // vehicle at once. Until the mission's failsafe begins, hold hover thrust; in its descent,
+    // sink at kBlindSinkAccel for kBlindSinkS to build a slow descent (about 0.3 m/s), then
+    // nearly at hover thrust so that it reaches the floor at about that speed instead of
+    // gathering speed all the way down (a hover-thrust error of a few per cent is 0.3 m/s^2).
+    constexpr float kBlindSinkAccel = -0.3f;   // m/s^2
+    constexpr float kBlindSettleAccel = -0.05f;  // m/s^2
+    constexpr Duration kBlindSinkS = Duration::from_ms(1000);
+    const bool descending = mission_.phase() == mission::Phase::kFailsafeLand;
+    if (descending && !blind_descending_) blind_descent_since_ = now;
+    blind_descending_ = descending;
+    float accel = 0.0f;
+    if (descending) accel = now - blind_descent_since_ < kBlindSinkS ? kBlindSinkAccel : kBlindSettleAccel;
     out = controller_.safe_output(now, control::control_flag::kInvalidNav);
-    out.command.thrust = controller_.params().model.thrust.command_for(kBlindDescentAccel);
+    out.command.thrust = controller_.params().model.thrust.command_for(accel);
+  } else {
+    blind_descending_ = false;
   }
   out.command.stamp = now;
   command_ = out.command;

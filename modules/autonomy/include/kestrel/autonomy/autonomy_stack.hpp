@@ -139,6 +139,8 @@ class AutonomyStack {
   AttitudeSetpoint command_;
   uint32_t control_flags_ = 0;
   bool armed_ = false;
+  bool blind_descending_ = false;  // the failsafe's blind descent, since blind_descent_since_
+  TimeUs blind_descent_since_;
   StackCounters counters_;
 };
 

@@ -12,13 +12,20 @@
 // filter accepted, a scan that was well formed and in time order (matched, lost, or with too
 // few returns: nothing within the laser's reach in a large room is the world's silence, not
 // the device's, and flying on the IMU there is what the stack always did). A device that
-// delivers only garbage is as silent as one that delivers nothing. Times are the loop's, when
-// the sample was taken in, not the samples' stamps: a late but steady laser (paper 000's
-// delayed scans) is alive, and a link whose stamps are on another clock does not look silent.
+// delivers only garbage is as silent as one that delivers nothing.
 //
-// The estimate is stale for the mission when either device is silent; the controller flies
-// blind (level, sinking: AutonomyStack::control_task) only when the IMU is, since with the
-// laser gone the IMU still carries the velocity the descent needs.
+// Silence is judged where the device is read: the time from the last usable sample to the
+// device's own task's latest poll of it. A loop that is merely late (a long match on a slow
+// board, the map rebuild taking the only core) polls late and finds the samples waiting, so
+// it does not make a healthy device look silent; a device is silent when its task polled and
+// found nothing usable for the timeout. Times are the loop's (the tasks' releases), not the
+// samples' stamps: a late but steady laser (paper 000's delayed scans) is alive, and a link
+// whose stamps are on another clock does not look silent.
+//
+// The estimate is stale for the mission when either device is silent. With the IMU silent the
+// estimate is frozen, so the controller stops steering on it at once (AutonomyStack::
+// control_task: level, and in the failsafe a gentle blind descent); with only the laser
+// silent the IMU still carries the velocity the descent needs.
 //
 // No heap, no exceptions.
 #include <cmath>
@@ -50,19 +57,20 @@ class SensorWatchdog {
     imu_timeout_ = Duration::from_s(t.imu_s);
     scan_timeout_ = Duration::from_s(t.scan_s);
   }
+  // Each device's task says when it polled, and when it took a usable sample (same time).
+  void imu_polled(TimeUs now) { imu_.polled(now); }
   void imu_alive(TimeUs now) { imu_.heard(now); }
+  void scan_polled(TimeUs now) { scan_.polled(now); }
   void scan_alive(TimeUs now) { scan_.heard(now); }
 
-  bool imu_fresh(TimeUs now) const { return imu_.fresh(now, imu_timeout_); }
-  bool scan_fresh(TimeUs now) const { return scan_.fresh(now, scan_timeout_); }
+  bool imu_fresh() const { return imu_.fresh(imu_timeout_); }
+  bool scan_fresh() const { return scan_.fresh(scan_timeout_); }
 
   // The estimate as the mission may use it: invalid while either device is silent. Also
   // counts the falls into silence (once per silence, however often it is asked).
-  NavState for_mission(const NavState& nav, TimeUs now) {
-    imu_.not_after(now);
-    scan_.not_after(now);
-    const bool imu = imu_fresh(now);
-    const bool scan = scan_fresh(now);
+  NavState for_mission(const NavState& nav) {
+    const bool imu = imu_fresh();
+    const bool scan = scan_fresh();
     counters_.imu += imu_.fell_silent(imu);
     counters_.scan += scan_.fell_silent(scan);
     NavState out = nav;
@@ -73,20 +81,22 @@ class SensorWatchdog {
 
  private:
   struct Device {
-    TimeUs last;
+    TimeUs last_heard, last_polled;
     bool heard_once = false;
     bool was_fresh = false;
+    void polled(TimeUs now) {
+      // A clock that steps back (a reset) would leave the last sample in the future, and the
+      // device fresh until the clock caught up: count it as heard at the step instead, so a
+      // silence after the step still shows within the timeout.
+      if (heard_once && now < last_heard) last_heard = now;
+      last_polled = now;
+    }
     void heard(TimeUs now) {
-      last = now;
+      polled(now);
+      last_heard = now;
       heard_once = true;
     }
-    // A clock that steps back (a reset) would leave the last sample in the future and the
-    // device fresh until the clock caught up: heard "now" instead, so silence after the step
-    // still shows within the timeout.
-    void not_after(TimeUs now) {
-      if (heard_once && now < last) last = now;
-    }
-    bool fresh(TimeUs now, Duration timeout) const { return heard_once && now - last <= timeout; }
+    bool fresh(Duration timeout) const { return heard_once && last_polled - last_heard <= timeout; }
     bool fell_silent(bool fresh_now) {
       const bool fell = was_fresh && !fresh_now;
       was_fresh = fresh_now;
