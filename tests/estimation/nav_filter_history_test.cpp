@@ -47,35 +47,56 @@ TEST(NavFilterHistory, DelayedMeasurementsGiveTheInOrderResult) {
   expect_same_state(*in_order, *late, 1e-5f);
 }
 
-// GIVEN IMU samples taken in before the first pose, all of them later than the pose's stamp
-// (the laser's first beam came first: on a board where both start together), THEN the filter
-// starts its history at the pose and the next sample is no gap (a gap is time between samples):
-// no history restart, and the next pose is taken. Before, the next sample's time was measured
-// from the pose's, looked like a gap, restarted the history, and the next pose was refused as
-// older than it (seen in kestrel-sim with 0.2 s late scans: one gap, four poses refused).
-TEST(NavFilterHistory, FirstPoseOlderThanEveryStoredSampleStartsTheHistory) {
-  auto f = std::make_unique<NavFilter>(EkfParams{});
-  auto sample = [](int64_t ms) {
-    ImuSample s;
-    s.stamp = TimeUs::from_us(ms * 1000);
-    s.accel_mps2 = {0.0f, 0.0f, 9.81f};
-    return s;
-  };
-  for (int64_t ms = 10; ms <= 60; ms += 5) EXPECT_EQ(f->predict(sample(ms)), Status::kNoData);
+ImuSample level_sample(int64_t ms) {
+  ImuSample s;
+  s.stamp = TimeUs::from_us(ms * 1000);
+  s.accel_mps2 = {0.0f, 0.0f, 9.81f};
+  return s;
+}
+
+PoseMeasurement2 pose_at(int64_t ms) {
   PoseMeasurement2 m;
-  m.stamp = TimeUs::from_us(0);
+  m.stamp = TimeUs::from_us(ms * 1000);
   m.pose = {1.0f, 2.0f, 0.5f};
   m.covariance = Eigen::Vector3f(1e-4f, 1e-4f, 1e-4f).asDiagonal();
-  ASSERT_EQ(f->update_pose(m), Status::kOk);
-  for (int64_t ms = 65; ms <= 150; ms += 5) EXPECT_EQ(f->predict(sample(ms)), Status::kOk) << ms;
-  m.stamp = TimeUs::from_us(100'000);
-  EXPECT_EQ(f->update_pose(m), Status::kOk);
+  return m;
+}
+
+// GIVEN IMU samples taken in before the first pose, all later than its stamp and reaching more
+// than max_imu_gap_s (0.1 s) past it (the laser's first beam came first, and its scan arrived
+// late: paper 000's 0.2 s delay), THEN the filter keeps them, the pose in front: no gap, no
+// history restart, and the next pose is taken. Before, they were dropped, the next sample was a
+// 0.2 s step from the pose, taken for a gap that restarted the history, and the next poses were
+// refused as older than it (kestrel-sim's delay study: one gap, four poses refused).
+TEST(NavFilterHistory, FirstPoseOlderThanEveryStoredSampleKeepsThem) {
+  auto f = std::make_unique<NavFilter>(EkfParams{});
+  for (int64_t ms = 10; ms <= 200; ms += 5) EXPECT_EQ(f->predict(level_sample(ms)), Status::kNoData);
+  ASSERT_EQ(f->update_pose(pose_at(0)), Status::kOk);
+  EXPECT_EQ(f->history_span(), Duration::from_ms(200));  // from the pose to the newest sample
+  for (int64_t ms = 205; ms <= 300; ms += 5) EXPECT_EQ(f->predict(level_sample(ms)), Status::kOk) << ms;
+  EXPECT_EQ(f->update_pose(pose_at(100)), Status::kOk);
   EXPECT_EQ(f->counters().imu_gaps, 0u);
   EXPECT_EQ(f->counters().meas_too_old, 0u);
   EXPECT_EQ(f->counters().pose_updates, 2u);
   EXPECT_NEAR(f->state().position_m.x(), 1.0f, 1e-3f);
   EXPECT_NEAR(f->state().position_m.y(), 2.0f, 1e-3f);
-  EXPECT_EQ(f->state().stamp, TimeUs::from_us(150'000));
+  EXPECT_EQ(f->state().stamp, TimeUs::from_us(300'000));
+}
+
+// GIVEN a first pose older than the IMU's first sample by more than a gap, THEN nothing can
+// carry the state across: it is counted as a gap and the filter starts at the first sample,
+// keeping every stored one, and the next pose is taken.
+TEST(NavFilterHistory, FirstPoseOlderThanTheImuByMoreThanAGapStartsAtTheFirstSample) {
+  auto f = std::make_unique<NavFilter>(EkfParams{});
+  for (int64_t ms = 300; ms <= 400; ms += 5) EXPECT_EQ(f->predict(level_sample(ms)), Status::kNoData);
+  ASSERT_EQ(f->update_pose(pose_at(0)), Status::kOk);
+  EXPECT_EQ(f->counters().imu_gaps, 1u);
+  EXPECT_EQ(f->history_span(), Duration::from_ms(100));
+  EXPECT_EQ(f->predict(level_sample(405)), Status::kOk);
+  EXPECT_EQ(f->update_pose(pose_at(350)), Status::kOk);
+  EXPECT_EQ(f->counters().imu_gaps, 1u);
+  EXPECT_EQ(f->counters().meas_too_old, 0u);
+  EXPECT_NEAR(f->state().position_m.x(), 1.0f, 1e-3f);
 }
 
 // GIVEN measurements delivered out of order (a later one before an earlier one),

@@ -72,6 +72,9 @@ TEST(HoverClosedLoop, Utm30lxHoldsTheSetPointWithinTwiceThePapersFigures) {
   for (const char* refused : {"nav.imu_not_finite", "nav.imu_out_of_range", "nav.imu_time_backwards",
                               "nav.meas_not_finite", "nav.meas_out_of_range", "nav.meas_future"})
     EXPECT_EQ(metric(f.metrics, refused), 0) << refused;
+  // Nor did the stack's watchdog take a healthy device for a silent one.
+  EXPECT_EQ(metric(f.metrics, "imu_silences"), 0);
+  EXPECT_EQ(metric(f.metrics, "scan_silences"), 0);
 }
 
 TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
@@ -89,6 +92,12 @@ TEST(HoverClosedLoop, LateScansAreAbsorbedByTheStateHistory) {
   EXPECT_FALSE(f.run.collided);
   EXPECT_LE(metric(f.metrics, "hover_rms_m"), 0.12);
   EXPECT_LE(metric(f.metrics, "pos_err_mean_m"), 0.03);
+  // The first pose arrives after 0.2 s of IMU samples, all later than its stamp: the filter
+  // keeps them (NavFilterHistory.FirstPoseOlderThanEveryStoredSampleKeepsThem), so there is no
+  // gap, and no late pose is refused as older than the history.
+  EXPECT_EQ(metric(f.metrics, "nav.imu_gaps"), 0);
+  EXPECT_EQ(metric(f.metrics, "nav.meas_too_old"), 0);
+  EXPECT_EQ(metric(f.metrics, "nav.pose_rejected"), 0);
 }
 
 }  // namespace

@@ -55,6 +55,28 @@ void NavFilter::initialise(TimeUs t, const Pose2& pose) {
   f.hd.P = Eigen::Vector2f(params_.init_heading_var, params_.init_gyro_bias_var).asDiagonal();
   log_first_ = log_count_ = 0;
   initialised_ = true;
+  if (count_ > 0 && t < slot(0).t) {
+    // The pose is older than every IMU sample taken in before it (the laser's first beam came
+    // before the IMU's first sample, as on a board where both start together).
+    if ((slot(0).t - t).seconds() > params_.max_imu_gap_s) {
+      // By more than a gap: nothing carries the state from the pose to the first sample. Start
+      // at the first sample, as if the pose had been taken then.
+      ++counters_.imu_gaps;
+      t = slot(0).t;
+    } else if ((slot(count_ - 1).t - t).seconds() >= params_.max_imu_gap_s) {
+      // The samples reach a gap or more past the pose: dropped, they would leave the next
+      // sample a gap's step from the pose. Keep them and put the pose in front.
+      if (count_ == kHistory) {
+        first_ = (first_ + 1) % kHistory;
+        --count_;
+      }
+      first_ = (first_ + kHistory - 1) % kHistory;
+      ++count_;
+      slot(0).t = t;
+      slot(0).in = slot(1).in;
+    }
+    // Otherwise one step of less than a gap covers them: the history starts at the pose.
+  }
   if (count_ == 0 || t < slot(0).t) {
     // No stored input covers the pose's time: start the history at it.
     first_ = 0;
@@ -132,11 +154,10 @@ Status NavFilter::predict(const ImuSample& imu) {
     ++counters_.imu_time_backwards;
     return Status::kTimeJump;
   }
-  // A gap is time between IMU samples. The newest slot is normally the previous sample, but
-  // right after the first pose it may be the pose's time, older than the samples taken in
-  // before it (the laser's first beam came first, as on a board where both start together):
-  // measured from there, the next sample looked like a gap, restarted the history and made the
-  // next pose too old.
+  // A gap is time between IMU samples. The newest slot is normally the previous sample; right
+  // after a first pose older than the few samples taken in before it, it is the pose, and the
+  // next sample's step from there covers the dropped ones (less than a gap plus one sample
+  // period: initialise()). Measured from the pose, that step looked like a gap at the boundary.
   const bool had_sample = have_imu_;
   const Duration since_previous_sample = imu.stamp - last_imu_t_;
   have_imu_ = true;
