@@ -199,9 +199,9 @@ void AutonomyStack::control_task(TimeUs now) {
     // Blind: no estimate to steer on (none yet, or frozen with the IMU silent), so level the
     // vehicle at once. Until the mission's failsafe begins, hold hover thrust; in its descent,
     // sink at kBlindSinkAccel for kBlindSinkS to build a slow descent (about 0.3 m/s), then
-    // nearly at hover thrust so that it reaches the floor at about that speed instead of
-    // gathering speed all the way down (a hover-thrust error of a few per cent is 0.3 m/s^2).
-    constexpr float kBlindSinkAccel = -0.3f;   // m/s^2
+    // nearly at hover thrust, so that it reaches the floor at about that speed (0.4 m/s from
+    // 1 m) instead of gathering speed all the way down (0.8 m/s).
+    constexpr float kBlindSinkAccel = -0.3f;  // m/s^2
     constexpr float kBlindSettleAccel = -0.05f;  // m/s^2
     constexpr Duration kBlindSinkS = Duration::from_ms(1000);
     const bool descending = mission_.phase() == mission::Phase::kFailsafeLand;
