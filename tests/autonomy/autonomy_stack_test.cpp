@@ -641,14 +641,27 @@ TEST_F(AutonomyStackTest, AnImuThatFallsSilentInFlightLeadsToABlindFailsafeLandi
   ASSERT_EQ(r.stack->mission().phase(), Phase::kFailsafeLand) << mission::to_string(r.stack->mission().phase());
   EXPECT_EQ(r.stack->silences().imu, 1u);
   EXPECT_EQ(r.stack->silences().scan, 0u);
-  r.run_for(Duration::from_ms(500));  // inside the first second of the descent: sinking
-  const float sinking = r.autopilot.last.thrust;
-  EXPECT_LT(sinking, hover);
-  EXPECT_EQ(r.autopilot.last.pitch_rad, 0.0f);
-  r.run_for(Duration::from_ms(1000));  // then nearly at hover thrust
-  EXPECT_GT(r.autopilot.last.thrust, sinking);
-  EXPECT_LT(r.autopilot.last.thrust, hover);
-  EXPECT_EQ(r.stack->mission().phase(), Phase::kFailsafeLand);
+  // The commanded descent, flown through the stack's own thrust model (z'' = k thrust + b) from
+  // 1 m: level all the way, 0.3 m/s after the first second, and on the floor at 0.3-0.45 m/s
+  // before the mission's descent timer ends (at a constant -0.3 m/s^2 it would be 0.77 m/s).
+  const control::AxisModel thrust_model = Rig::config().controller.model.thrust;
+  float z = 1.0f, vz = 0.0f;
+  int steps = 0;
+  for (; z > 0.0f && steps < 1000; ++steps) {
+    r.run_for(Duration::from_ms(10));
+    ASSERT_EQ(r.stack->mission().phase(), Phase::kFailsafeLand) << "landed by the timer at " << z << " m";
+    EXPECT_EQ(r.autopilot.last.pitch_rad, 0.0f);
+    EXPECT_EQ(r.autopilot.last.roll_rad, 0.0f);
+    EXPECT_LT(r.autopilot.last.thrust, hover);
+    vz += (thrust_model.k * r.autopilot.last.thrust + thrust_model.b) * 0.01f;
+    z += vz * 0.01f;
+    if (steps == 99) {
+      EXPECT_NEAR(vz, -0.3f, 0.02f);  // one second of -0.3 m/s^2
+    }
+  }
+  EXPECT_LE(z, 0.0f);
+  EXPECT_GT(-vz, 0.3f);
+  EXPECT_LT(-vz, 0.45f);
 }
 
 // A laser that falls silent in flight leaves the filter on the IMU alone, with no position fix.
