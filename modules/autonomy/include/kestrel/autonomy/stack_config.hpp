@@ -13,9 +13,9 @@
 
 namespace kestrel::autonomy {
 
-// The scan matcher as the vehicle runs it: 1 cm cells over the 1024-cell on-board map give a
-// 10 m window, wide enough that a hallway's end walls and a room's far side constrain the
-// match (with the paper's 7.5 mm the window is 7.7 m).
+// The scan matcher as the vehicle runs it: 1 cm cells over the 2000-cell on-board map give a
+// 20 m window, wide enough that a 15 m room's far side and a corridor's end walls constrain
+// the match (scan_matcher.hpp, kOnboardMapDim).
 // The controller as the vehicle flies it: position errors clipped at 0.7 m keep the approach
 // speed near 0.6 m/s, so scans taken during a 25 ms sweep stay sharp for the matcher (paper
 // 002 flies at 0.5 m/s for the same reason).

@@ -110,14 +110,19 @@ class ScanMatcher {
 };
 
 // The vehicle configuration: both map buffers in one object the caller allocates once at
-// start-up. 1024 x 1024 cells cover 10.2 m around the vehicle at its 1 cm cells (7.7 m at the
-// paper's 7.5 mm); with the max-pooled pyramids and segment lists both buffers take about
-// 2.7 MiB.
+// start-up. 2000 x 2000 cells cover 20 m around the vehicle at its 1 cm cells, the most the
+// contours' int16 sub-cell coordinates allow (2047): a 15 m room's far walls and a corridor's
+// end walls then lie inside the map, where with 10 m (1024 cells) the match said nothing along
+// the room or the corridor and the filter carried that axis on the IMU (modules/exploration/
+// EXPERIMENTS.md, *Corridor key scans*). With the max-pooled pyramids and segment lists both
+// buffers take about 10.2 MiB, allocated once at start-up (this is the scan matcher's local
+// map, not the compact SLAM's map that DESIGN.md budgets at 1 MiB). Drawing, clearing and
+// searching cost what is drawn and scored, not the map's area: a 4 m URG-04LX costs the same.
 template <int Dim, std::size_t MaxSegments>
 struct ScanMatcherStorage {
   LikelihoodMapStorage<Dim, MaxSegments> map_a, map_b;
 };
-inline constexpr int kOnboardMapDim = 1024;
+inline constexpr int kOnboardMapDim = 2000;
 inline constexpr std::size_t kOnboardMaxSegments = 4 * kMaxBeams;
 using OnboardMapStorage = ScanMatcherStorage<kOnboardMapDim, kOnboardMaxSegments>;
 
