@@ -728,6 +728,36 @@ TEST(ScanMatcher, RefusesARangeBeyondTheSearchsCells) {
   EXPECT_EQ(r.m->configure(p), Status::kOk);
 }
 
+// Why the on-board map is 2000 cells: hovering in the middle of a 15 m x 6 m room (iarc-arena's
+// rooms), facing a long wall, the end walls are 7.5 m away on either side. A 1024-cell map at the vehicle's 1 cm holds 5.1 m each
+// way, so the match sees only the long walls: degenerate along the room, its likely region
+// running off the slice, the filter left to carry that axis. The 20 m map holds the end walls
+// and the match is bounded in every direction.
+TEST(ScanMatcher, TheOnboardMapHoldsA15mRoomsEndWalls) {
+  const std::vector<test::Wall> room{{-7.5f, -3, 7.5f, -3}, {7.5f, -3, 7.5f, 3}, {7.5f, 3, -7.5f, 3}, {-7.5f, 3, -7.5f, -3}};
+  Params p;
+  p.resolution_m = 0.01f;  // the vehicle's cells (autonomy::vehicle_matcher_params)
+  p.sigma_m = 0.02f;
+  const float unbounded_m2 = 0.5f * static_cast<float>(kUnboundedVarianceCells2) * p.resolution_m * p.resolution_m;
+  const auto hover = [&](ScanMatcher& m) {
+    EXPECT_TRUE(m.process(test::cast_scan({0, 0, 1.5708f}, room, 1081, 4.712f, at(0))).ok());
+    return m.process(test::cast_scan({0, 0, 1.5708f}, room, 1081, 4.712f, at(1)));
+  };
+  Rig onboard(p);
+  const ScanMatch wide = hover(*onboard.m);
+  ASSERT_TRUE(wide.ok());
+  EXPECT_EQ(wide.measurement.flags & match_flag::kDegenerate, 0u);
+  const float wide_trace = wide.measurement.covariance.topLeftCorner<2, 2>().trace();
+  EXPECT_LT(wide_trace, 1e-3f);
+  EXPECT_LT(std::hypot(wide.measurement.pose.x, wide.measurement.pose.y), 0.01f);
+  RigOf<ScanMatcherStorage<1024, kOnboardMaxSegments>> ten_metres(p);
+  const ScanMatch narrow = hover(*ten_metres.m);
+  ASSERT_TRUE(narrow.ok());
+  EXPECT_NE(narrow.measurement.flags & match_flag::kDegenerate, 0u);
+  const float narrow_trace = narrow.measurement.covariance.topLeftCorner<2, 2>().trace();
+  EXPECT_GT(narrow_trace, unbounded_m2);
+}
+
 // Asynchronous mode: until the background rebuild publishes a map the matcher says so; after
 // it, matching proceeds.
 TEST(ScanMatcher, AsynchronousRebuild) {
