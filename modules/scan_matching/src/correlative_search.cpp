@@ -153,9 +153,9 @@ void CorrelativeSearch::build_runs(int level) {
   };
   if (runs_level_ == 0 || level < runs_first_) {
     const int first = std::max(1, std::min(level, kLeafLevel));
-    // No clamping needed: rotate() kept only points inside the map, of at most 2048 cells
-    // (LikelihoodMapStorage), so every cell here is within +-1400 of the origin, far from
-    // the sentinel and from int16's limits.
+    // No clamping needed: rotate() kept only points at least half_cells inside the map, of at
+    // most 2047 cells (LikelihoodMapStorage: Dim * kSub < 32768), so every cell here lies in
+    // [0, Dim / 2 + 1], far from the sentinel and from int16's limits.
     const int32_t off = (1 << first) - half_cells_;
     run_count_[static_cast<std::size_t>(first - 1)] = merge_into(
         runs_[static_cast<std::size_t>(first - 1)],

@@ -40,13 +40,14 @@ inline scan_matching::Params vehicle_matcher_params() {
   // behind on average; joined, 2 cm ahead).
   p.join_gap_factor = 8.0f;
   p.join_max_m = 1.0f;
-  // degenerate_key_interval_s stays 0 (off) for now: at 1 s it mends gt-building's corridor,
-  // where the local map could hold only the slice seen through a door (UTM-30LX, 30 minutes,
-  // seeds 1-60: 40 flights land at home, 27 without; 52 enter every room, 53 without), but its
-  // key scans take in the error along a corridor: the 1 m/s hallway flight ends further off,
-  // and iarc-arena's waypoint tour touches room B's door frame on 6 of 20 seeds with it, none
-  // without (README, Exploration; modules/exploration/EXPERIMENTS.md). kestrel-sim:
-  // --mission-arg corridor_keys_s=1.
+  // degenerate_key_interval_s stays 0 (off): flown on the 10 m map at 1 s it mended
+  // gt-building's corridor, where the local map could hold only the slice seen through a door
+  // (UTM-30LX, 30 minutes, seeds 1-60: 40 flights landed at home, 27 without; 52 entered every
+  // room, 53 without), but its key scans take in the error along a corridor: the 1 m/s hallway
+  // flight ended further off, and iarc-arena's waypoint tour touched room B's door frame on 6 of
+  // 20 seeds with it, none without (README, Exploration; modules/exploration/EXPERIMENTS.md).
+  // The 20 m map mends that corridor without it (59 of 60 at home); the rule was not re-flown
+  // on it. kestrel-sim: --mission-arg corridor_keys_s=1.
   return p;
 }
 

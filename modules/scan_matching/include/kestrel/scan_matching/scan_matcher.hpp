@@ -110,14 +110,15 @@ class ScanMatcher {
 };
 
 // The vehicle configuration: both map buffers in one object the caller allocates once at
-// start-up. 2000 x 2000 cells cover 20 m around the vehicle at its 1 cm cells, the most the
-// contours' int16 sub-cell coordinates allow (2047): a 15 m room's far walls and a corridor's
-// end walls then lie inside the map, where with 10 m (1024 cells) the match said nothing along
-// the room or the corridor and the filter carried that axis on the IMU (modules/exploration/
-// EXPERIMENTS.md, *Corridor key scans*). With the max-pooled pyramids and segment lists both
-// buffers take about 10.2 MiB, allocated once at start-up (this is the scan matcher's local
-// map, not the compact SLAM's map that DESIGN.md budgets at 1 MiB). Drawing, clearing and
-// searching cost what is drawn and scored, not the map's area: a 4 m URG-04LX costs the same.
+// start-up. 2000 x 2000 cells of the vehicle's 1 cm cover 20 m centred on the newest key scan
+// (the vehicle stays within 5 m of it), close to the most the contours' int16 sub-cell
+// coordinates allow (2047): near the middle of a 15 m room its far walls, and a corridor's end
+// walls within 10 m, lie inside the map, where with 10 m (1024 cells) the match said nothing
+// along the room or the corridor and the filter carried that axis on the IMU (modules/
+// exploration/EXPERIMENTS.md, *The local map is 20 m wide*). With the max-pooled pyramids and
+// segment lists both buffers take about 10.2 MiB (we read DESIGN.md's "SLAM map <= 1 MiB" as the
+// compact SLAM's map, not this one: same file). The search scores the points the map holds, so
+// a UTM-30LX scan costs more than on the 10 m map; a 4 m URG-04LX costs the same.
 template <int Dim, std::size_t MaxSegments>
 struct ScanMatcherStorage {
   LikelihoodMapStorage<Dim, MaxSegments> map_a, map_b;
