@@ -608,8 +608,8 @@ TEST(ScanMatcher, AbsurdFinitePriorIsRefusedOrBounded) {
 
 // Only the points the map can judge are scored, and the score is their mean: a scan whose
 // only points inside the map (15 m at 7.5 mm) are a few on a post (the rest on a hall's walls
-// 20 m away)
-// fits them perfectly, yet that is too little to be a match. It is lost, not confident.
+// 20 m away) fits them perfectly, yet that is too little to be a match. It is lost, not
+// confident.
 TEST(ScanMatcher, FewScoredPointsAreLostNotConfident) {
   const std::vector<test::Wall> post{{1.5f, -0.02f, 1.5f, 0.02f}};
   std::vector<test::Wall> room = test::room();
@@ -734,10 +734,10 @@ TEST(ScanMatcher, RefusesARangeBeyondTheSearchsCells) {
 }
 
 // Why the on-board map is 2000 cells: hovering in the middle of a 15 m x 6 m room (iarc-arena's
-// rooms), facing a long wall, the end walls are 7.5 m away on either side. A 1024-cell map at the vehicle's 1 cm holds 5.1 m each
-// way, so the match sees only the long walls: degenerate along the room, its likely region
-// running off the slice, the filter left to carry that axis. The 20 m map holds the end walls
-// and the match is bounded in every direction.
+// rooms), facing a long wall, the end walls are 7.5 m away on either side. A 1024-cell map at
+// the vehicle's 1 cm holds 5.1 m each way, so the match sees only the long walls: degenerate
+// along the room, its likely region running off the slice, the filter left to carry that axis.
+// The 20 m map holds the end walls and the match is bounded in every direction.
 TEST(ScanMatcher, TheOnboardMapHoldsA15mRoomsEndWalls) {
   const std::vector<test::Wall> room{
       {-7.5f, -3, 7.5f, -3}, {7.5f, -3, 7.5f, 3}, {7.5f, 3, -7.5f, 3}, {-7.5f, 3, -7.5f, -3}};
