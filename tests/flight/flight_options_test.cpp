@@ -49,16 +49,20 @@ TEST(FlightOptions, MalformedKeepOutsAreRefusedWithAReason) {
 
 TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   const sim::MissionOptions opt =
-      options({{"approach", "off"}, {"approach_blind_mps", "0.2"}, {"srt_range_m", "5"}, {"altitude_m", "1.2"}});
+      options({{"approach", "off"}, {"approach_blind_mps", "0.2"}, {"srt_range_m", "5"}, {"altitude_m", "1.2"},
+               {"speed_limit_mps", "0.8"}});
   FlightOptions f;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
   EXPECT_FALSE(f.stack.explorer.approach.enabled);
   EXPECT_FLOAT_EQ(f.stack.explorer.approach.blind_speed_mps, 0.2f);
   EXPECT_FLOAT_EQ(f.stack.explorer.srt.perception_range_m, 5.0f);
   EXPECT_FLOAT_EQ(f.stack.mission.takeoff_altitude_m, 1.2f);
+  EXPECT_FLOAT_EQ(f.stack.explorer.guidance.speed_limit_mps, 0.8f);
   EXPECT_EQ(f.stack.explorer.validate(), Status::kOk);
   for (const auto& [key, bad] : {std::pair<const char*, const char*>{"approach", "maybe"},
                                  {"approach_blind_mps", "-1"},
+                                 {"speed_limit_mps", "0"},
+                                 {"speed_limit_mps", "fast"},
                                  {"srt_range_m", "0"},
                                  {"altitude_m", "0.1"},
                                  {"altitude_m", "high"}}) {
