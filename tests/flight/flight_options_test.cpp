@@ -63,6 +63,7 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
                                  {"approach_blind_mps", "-1"},
                                  {"speed_limit_mps", "0"},
                                  {"speed_limit_mps", "fast"},
+                                 {"speed_limit_mps", "6"},
                                  {"srt_range_m", "0"},
                                  {"altitude_m", "0.1"},
                                  {"altitude_m", "high"}}) {
@@ -74,6 +75,7 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   FlightOptions h;
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}}), h), "");
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}, {"approach", "on"}}), h), "");
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"speed_limit_mps", "0.8"}}), h), "");
 }
 
 // The explorer's distances from laser returns (modules/exploration/EXPERIMENTS.md, Not done: the same physical margins

@@ -3,7 +3,6 @@
 // the two must stay the same waypoints.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <string>
 
 #include "kestrel/autonomy/stack_config.hpp"

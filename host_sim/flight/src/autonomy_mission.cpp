@@ -181,7 +181,7 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       out.stack.explorer.srt.perception_range_m = static_cast<float>(d);
     } else if (key == "speed_limit_mps" && kind == mission::MissionKind::kExplore) {
       // Section V's speed limit (0.5 m/s by default, paper 002's); the approach limiter
-      // still bounds the closing speed on every return.
+      // still bounds the closing speed on every return, unless approach=off.
       if (!parse_double(value, d) || d <= 0 || d > 5) return "speed_limit_mps: '" + value + "' is not a speed in (0, 5] m/s";
       out.stack.explorer.guidance.speed_limit_mps = static_cast<float>(d);
     } else if (key == "approach_blind_mps" && kind == mission::MissionKind::kExplore) {

@@ -14,7 +14,8 @@ using namespace kestrel::scan_matching;
 
 // A realistic indoor scan: a 6 x 4 m room with a doorway, a pillar and a railing, seen by a
 // UTM-30LX (1081 beams over 270 degrees) from `pose`; `scale` multiplies every wall's
-// coordinates (2.5: a 15 x 10 m hall, whose walls span most of the on-board map).
+// coordinates (2.5: a 15 x 10 m hall, which fills most of the on-board map at the benchmarks'
+// 7.5 mm cells, 15 m).
 LaserScan room_scan(const Pose2& pose, TimeUs t, float scale = 1.0f) {
   LaserScan s;
   s.stamp = t;
@@ -105,8 +106,8 @@ void BM_Contours350(benchmark::State& st) {
 BENCHMARK(BM_Contours350)->Name("scan_matcher/contours_350")->Unit(benchmark::kMicrosecond);
 
 // A full rebuild of a 7.5 mm local map from 5 key scans of the room, scaled by `scale`. The
-// rebuild's coarse levels cover the area the walls span, so the 15 m hall measures what the
-// 20 m map costs where its width is used.
+// rebuild's coarse levels cover the area the walls span, so the hall measures what a wide
+// map costs where its width is used.
 void map_build(benchmark::State& st, float scale) {
   Params p;
   auto storage = std::make_unique<OnboardMapStorage>();

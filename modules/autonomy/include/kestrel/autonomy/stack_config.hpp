@@ -47,7 +47,8 @@ inline scan_matching::Params vehicle_matcher_params() {
   // flight ended further off, and iarc-arena's waypoint tour touched room B's door frame on 6 of
   // 20 seeds with it, none without (README, Exploration; modules/exploration/EXPERIMENTS.md).
   // The 20 m map mends that corridor without it (59 of 60 at home); the rule was not re-flown
-  // on it. kestrel-sim: --mission-arg corridor_keys_s=1.
+  // on it with the UTM-30LX (with the URG-04LX: within the spread, fewer flights at home).
+  // kestrel-sim: --mission-arg corridor_keys_s=1.
   return p;
 }
 
