@@ -307,6 +307,7 @@ void AutonomyMission::score(sim::Simulation& sim) {
   (void)nav_error_.add({nav.stamp, s.est_pos, s.est_vel}, {nav.stamp, s.true_pos, s.true_vel});
   (void)drift_.add(s.est_pos.head<2>(), s.true_pos.head<2>(), !truth.on_ground);
   samples_.push_back(s);
+  (void)runaways_.add(s.t_s, (s.est_pos - s.true_pos).head<2>().norm());
 }
 
 void AutonomyMission::trace(sim::Simulation& sim) {
@@ -335,6 +336,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("pos_err_xy_far_m", d.samples > 0 ? d.far_error_m : nan);
   out.emplace_back("far_from_start_m", d.samples > 0 ? d.far_from_start_m : nan);
   out.emplace_back("pos_err_xy_final_m", d.samples > 0 ? d.final_error_m : nan);
+  out.emplace_back("estimate_runaways", static_cast<double>(runaways_.runaways()));
   out.emplace_back("heap_allocs_after_arm", static_cast<double>(allocs_in_loop_));
   out.emplace_back("delay_s", options_.delay_s);
   out.emplace_back("state_history", options_.use_measurement_time ? 1.0 : 0.0);

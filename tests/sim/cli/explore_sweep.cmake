@@ -105,7 +105,7 @@ endif()
 set(row 0)
 set(contacts_seen 0)
 foreach(w IN LISTS worlds)
-  foreach(v all free clean fin home cov pos vel t_all t90)
+  foreach(v all free clean fin home cov pos vel t_all t90 runaways)
     set(${v}_${w} 0)
   endforeach()
   set(best_ms_${w} "")  # the earliest all-rooms time of a run that touched nothing, in ms
@@ -218,6 +218,9 @@ foreach(w IN LISTS worlds)
     string(JSON vel GET "${json}" vel_err_mean_mps)
     scaled(${vel} 4 vel)
     math(EXPR vel_${w} "${vel_${w}} + ${vel}")
+    string(JSON ran GET "${json}" estimate_runaways)
+    scaled(${ran} 0 ran)
+    math(EXPR runaways_${w} "${runaways_${w}} + ${ran}")
 
     # Rooms never entered: a null entry time.
     string(JSON n_rooms LENGTH "${json}" room_entry_s)
@@ -244,7 +247,7 @@ endif()
 # Table 1: a row per (world, laser, explorer), the README's aggregates.
 list(GET table_1 0 header)
 expect("group header" "${header}"
-       "| world | laser | explorer | runs | all rooms entered | collision-free | all rooms and collision-free | finished | median all rooms at | best all rooms at, collision-free | mean coverage | median t90 s | landed at home | mean position error m | mean velocity error m/s |")
+       "| world | laser | explorer | runs | all rooms entered | collision-free | all rooms and collision-free | finished | median all rooms at | best all rooms at, collision-free | mean coverage | median t90 s | landed at home | mean position error m | mean velocity error m/s | estimate runaways per flight hour |")
 list(LENGTH table_1 rows)
 math(EXPR want_rows "${n_worlds} + 1")
 if(NOT rows EQUAL want_rows)
@@ -254,7 +257,7 @@ set(row 0)
 foreach(w IN LISTS worlds)
   math(EXPR row "${row} + 1")
   list(GET table_1 ${row} line)
-  cells("${line}" 15 c)
+  cells("${line}" 16 c)
   set(g "${w} ${laser} ${explorer}")
   list(SUBLIST c 0 8 got)
   expect("${g}: runs and counts" "${got}"
@@ -306,6 +309,14 @@ foreach(w IN LISTS worlds)
   list(GET c 14 got)
   math(EXPR mean "${vel_${w}} / ${n}")
   expect_near("${g}: mean velocity error" "${got}" 3 ${mean})
+  # Runaways per hour simulated: these flights are too short to run away, so any runaway the
+  # metrics hold must show as a non-zero rate.
+  list(GET c 15 got)
+  if(runaways_${w} EQUAL 0)
+    expect("${g}: runaways per flight hour" "${got}" "0.00")
+  elseif(NOT got MATCHES "^[0-9]+\\.[0-9][0-9]$" OR got STREQUAL "0.00")
+    message(FATAL_ERROR "${g}: runaways per flight hour '${got}' while the runs hold ${runaways_${w}}")
+  endif()
 endforeach()
 
 # Table 2: per group, how many runs never entered each room, most missed first ("none" if

@@ -24,6 +24,7 @@
 #include "kestrel/flight/scan_trace.hpp"
 #include "kestrel/metrics/ekf_error_stats.hpp"
 #include "kestrel/metrics/horizontal_drift.hpp"
+#include "kestrel/metrics/runaway_counter.hpp"
 #include "kestrel/sim/mission.hpp"
 #include "kestrel/sim/mission_registry.hpp"
 
@@ -89,6 +90,7 @@ class AutonomyMission final : public sim::Mission {
   uint64_t hover_n_ = 0;
   metrics::EkfErrorAccumulator nav_error_;
   metrics::HorizontalDriftAccumulator drift_;
+  metrics::RunawayCounter runaways_;  // estimate_runaways in metrics.json
   mission::Phase last_phase_ = mission::Phase::kIdle;
   std::array<double, mission::kPhaseCount> phase_start_s_{};  // first entry; < 0: never
   ScanTrace trace_;  // --trace-scans (scan_trace.hpp); closed unless asked for

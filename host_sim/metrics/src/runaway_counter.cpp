@@ -1,0 +1,24 @@
+#include "kestrel/metrics/runaway_counter.hpp"
+
+#include <cmath>
+
+namespace kestrel::metrics {
+
+Status RunawayCounter::add(double t_s, double error_m) {
+  if (!std::isfinite(t_s) || !std::isfinite(error_m)) return Status::kNotFinite;
+  if (any_ && t_s < last_t_) return Status::kInvalidArgument;
+  any_ = true;
+  last_t_ = t_s;
+  // The window's minimum is at the front: a sample drops every later-or-equal one it is below.
+  while (!minima_.empty() && minima_.back().second >= error_m) minima_.pop_back();
+  minima_.emplace_back(t_s, error_m);
+  while (minima_.front().first < t_s - window_s_) minima_.pop_front();
+  if (error_m - minima_.front().second > rise_m_ && (!counted_ || t_s - last_runaway_t_ > window_s_)) {
+    ++runaways_;
+    counted_ = true;
+    last_runaway_t_ = t_s;
+  }
+  return Status::kOk;
+}
+
+}  // namespace kestrel::metrics
