@@ -799,5 +799,19 @@ TEST_F(AutonomyStackTest, TheLoopAllocatesNothingAfterStart) {
   EXPECT_EQ(r.stack->counters().scans_rejected, 1u);
 }
 
+TEST(VehicleEkfParams, AShortReachLaserGetsTheQuieterAccelerometerModel) {
+  const estimation::EkfParams defaults;
+  // URG-04LX (4 m): the quieter model; UTM-30LX (30 m) and an unknown reach: the defaults.
+  EXPECT_EQ(vehicle_ekf_params(4000).accel_noise_xy, kShortReachAccelNoiseXy);
+  EXPECT_LT(kShortReachAccelNoiseXy, defaults.accel_noise_xy);
+  EXPECT_EQ(vehicle_ekf_params(30000).accel_noise_xy, defaults.accel_noise_xy);
+  EXPECT_EQ(vehicle_ekf_params(0).accel_noise_xy, defaults.accel_noise_xy);
+  // Nothing else differs, and the result is a valid parameter set.
+  estimation::EkfParams p = vehicle_ekf_params(4000);
+  EXPECT_EQ(estimation::validate(p), Status::kOk);
+  p.accel_noise_xy = defaults.accel_noise_xy;
+  EXPECT_EQ(std::memcmp(&p, &defaults, sizeof p), 0);
+}
+
 }  // namespace
 }  // namespace kestrel::autonomy

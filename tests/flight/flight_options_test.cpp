@@ -2,7 +2,9 @@
 // approach limiter, the perception range and the flight height.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <initializer_list>
+#include <string>
 #include <utility>
 
 #include "kestrel/flight/autonomy_mission.hpp"
@@ -142,6 +144,20 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   // Explore's only.
   FlightOptions h;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, margins, h), "");
+}
+
+TEST(FlightOptions, AnEkfFileIsCheckedAndKeptToLoadOverTheLasersDefaults) {
+  const std::string path = testing::TempDir() + "flight_options_test.ekf";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("pose_cov_scale = 2\n", f);
+  std::fclose(f);
+  FlightOptions ok;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kHover, options({{"ekf", path.c_str()}}), ok), "");
+  EXPECT_EQ(ok.ekf_file, path);  // start() loads it over autonomy::vehicle_ekf_params(laser)
+  EXPECT_TRUE(ok.ekf_for_laser);
+  FlightOptions missing;
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"ekf", "/no/such/file.ekf"}}), missing), "");
 }
 
 }  // namespace

@@ -26,7 +26,8 @@ struct Flight {
   bool finished = false;
 };
 
-Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double hover_s, double delay_s = 0) {
+Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double hover_s, double delay_s = 0,
+                 float* accel_noise_xy = nullptr) {
   const sim::WorldParseResult world = sim::load_builtin_world(world_name);
   EXPECT_TRUE(world.ok);
   sim::SimConfig cfg;
@@ -42,6 +43,7 @@ Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double h
   out.run = sim::run_mission(s, m, Duration::from_s(hover_s + 12));
   m.metrics(out.metrics);
   out.finished = m.stack().finished();
+  if (accel_noise_xy != nullptr) *accel_noise_xy = m.stack().filter().params().accel_noise_xy;
   return out;
 }
 
@@ -78,7 +80,10 @@ TEST(HoverClosedLoop, Utm30lxHoldsTheSetPointWithinTwiceThePapersFigures) {
 }
 
 TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
-  const Flight f = fly_hover(sim::LaserParams::urg04lx(), "cluttered-lab", kHoverS);
+  float accel_noise_xy = 0;
+  const Flight f = fly_hover(sim::LaserParams::urg04lx(), "cluttered-lab", kHoverS, 0, &accel_noise_xy);
+  // The filter runs with the short-reach laser's accelerometer model (stack_config.hpp).
+  EXPECT_EQ(accel_noise_xy, autonomy::kShortReachAccelNoiseXy);
   EXPECT_FALSE(f.run.collided);
   EXPECT_TRUE(f.finished);
   EXPECT_LE(metric(f.metrics, "hover_rms_m"), 0.12);

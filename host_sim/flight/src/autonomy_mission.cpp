@@ -215,9 +215,11 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       if (value != "on" && value != "off") return "history: expected on or off, got '" + value + "'";
       out.use_measurement_time = value == "on";
     } else if (key == "ekf") {
+      // Checked here, loaded by start() over the laser's defaults.
       params::ParamError err;
       if (estimation::load_ekf_params(value.c_str(), out.stack.ekf, err) != Status::kOk)
         return value + ":" + std::to_string(err.line) + ": " + err.message;
+      out.ekf_file = value;
     } else if (key == "controller") {
       params::ParamError err;
       if (control::load_controller_params(value.c_str(), out.stack.controller, err) != Status::kOk)
@@ -251,6 +253,14 @@ Status AutonomyMission::start(sim::Simulation& sim) {
   cfg.home = Pose2{static_cast<float>(t.position_m.x()), static_cast<float>(t.position_m.y()),
                    static_cast<float>(t.yaw_rad)};
   cfg.use_measurement_time = options_.use_measurement_time;
+  if (options_.ekf_for_laser) {
+    cfg.ekf = autonomy::vehicle_ekf_params(laser->geometry().max_range_mm);
+    params::ParamError err;
+    if (!options_.ekf_file.empty() && estimation::load_ekf_params(options_.ekf_file.c_str(), cfg.ekf, err) != Status::kOk) {
+      failure_ = options_.ekf_file + ":" + std::to_string(err.line) + ": " + err.message;
+      return Status::kInvalidArgument;
+    }
+  }
   if (stack_->configure(cfg) != Status::kOk) {
     failure_ = std::string("autonomy stack configuration: ") + stack_->configure_error();
     return Status::kInvalidArgument;

@@ -71,7 +71,7 @@ int help() {
       "  --mission M        hover (take off, hover --hover-s seconds (60), land; default) or explore\n"
       "  --explorer E       blend (default), wallfollow or srt, for --mission explore\n"
       "  --max-s S          stop after S seconds (default 900)\n"
-      "  --ekf FILE         EKF parameter file (kestrel-tune-ekf writes one)\n"
+      "  --ekf FILE         EKF parameter file (kestrel-tune-ekf writes one), over the laser's defaults\n"
       "  --controller FILE  controller parameter file (kestrel-sysid writes one)\n"
       "  --help             this text\n"
       "Exit status 2 for a usage error.\n",
@@ -148,6 +148,9 @@ int main(int argc, char** argv) {
   const Result<exploration::ExplorerKind> kind = exploration::parse_explorer_kind(opt.explorer.c_str());
   if (!kind.ok()) return usage(("unknown explorer '" + opt.explorer + "'").c_str());
   cfg.explorer_kind = kind.value();
+  const platform::HokuyoModel model =
+      opt.laser == "urg04lx" ? platform::HokuyoModel::urg04lx() : platform::HokuyoModel::utm30lx();
+  cfg.ekf = autonomy::vehicle_ekf_params(model.max_range_mm);  // --ekf FILE loads over these
   params::ParamError perr;
   if (!opt.ekf_file.empty() && estimation::load_ekf_params(opt.ekf_file.c_str(), cfg.ekf, perr) != Status::kOk) {
     std::fprintf(stderr, "kestrel-fw: %s:%d: %s\n", opt.ekf_file.c_str(), perr.line, perr.message);
@@ -160,8 +163,6 @@ int main(int argc, char** argv) {
   }
 
   static platform::LinuxClock clock;
-  const platform::HokuyoModel model =
-      opt.laser == "urg04lx" ? platform::HokuyoModel::urg04lx() : platform::HokuyoModel::utm30lx();
 
   // Devices: every object lives for the whole run and is created before arming.
   static platform::TcpLink tcp;

@@ -12,7 +12,7 @@
 //   explore_s=S      explore phase time limit (default 600)
 //   delay_s=S        extra delivery delay of every scan (paper 000 Figure 3b)
 //   history=on|off   apply scans at the time they were taken (on, default) or on arrival
-//   ekf=FILE         EKF parameter file (estimation::load_ekf_params)
+//   ekf=FILE         EKF parameter file, loaded over the laser's defaults (estimation::load_ekf_params)
 //   controller=FILE  controller parameter file (control::load_controller_params)
 #include <array>
 #include <memory>
@@ -33,6 +33,10 @@ namespace kestrel::flight {
 struct FlightOptions {
   mission::MissionKind kind = mission::MissionKind::kHover;
   autonomy::StackConfig stack;
+  // start() gives the filter the defaults of the simulated laser (autonomy::vehicle_ekf_params)
+  // and loads ekf_file (ekf=FILE) over them; false keeps stack.ekf as it is (the tuning tools).
+  bool ekf_for_laser = true;
+  std::string ekf_file;
   double delay_s = 0;
   bool use_measurement_time = true;
 };
