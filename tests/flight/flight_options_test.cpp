@@ -158,6 +158,7 @@ TEST(FlightOptions, AnEkfFileIsCheckedAndKeptToLoadOverTheLasersDefaults) {
   EXPECT_TRUE(ok.ekf_for_laser);
   FlightOptions missing;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"ekf", "/no/such/file.ekf"}}), missing), "");
+  std::remove(path.c_str());
 }
 
 }  // namespace

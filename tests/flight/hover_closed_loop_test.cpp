@@ -5,6 +5,9 @@
 // allocation inside the loop. On the ARM presets (under qemu) the hover is shorter.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <string>
+
 #include "kestrel/flight/autonomy_mission.hpp"
 #include "kestrel/sim/builtin_worlds.hpp"
 #include "kestrel/sim/mission_runner.hpp"
@@ -89,6 +92,34 @@ TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
   EXPECT_LE(metric(f.metrics, "hover_rms_m"), 0.12);
   EXPECT_LE(metric(f.metrics, "pos_err_mean_m"), 0.03);
   EXPECT_EQ(metric(f.metrics, "heap_allocs_after_arm"), 0);
+}
+
+// ekf=FILE is loaded over the laser's defaults when the mission starts: the file's key and
+// the laser's accelerometer model both reach the filter.
+TEST(HoverClosedLoop, AnEkfFileLoadsOverTheLasersDefaults) {
+  const std::string path = testing::TempDir() + "hover_closed_loop_test.ekf";
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  ASSERT_NE(file, nullptr);
+  std::fputs("pose_cov_scale = 2\n", file);
+  std::fclose(file);
+  for (const bool utm : {false, true}) {
+    if (utm && kShort) continue;  // the UTM-30LX is slow under qemu; the URG-04LX shows the order
+    const sim::WorldParseResult world = sim::load_builtin_world("cluttered-lab");
+    ASSERT_TRUE(world.ok);
+    sim::SimConfig cfg;
+    cfg.laser = utm ? sim::LaserParams::utm30lx() : sim::LaserParams::urg04lx();
+    sim::Simulation s(world.world, cfg);
+    sim::MissionOptions opt;
+    opt.values.emplace(std::string("ekf"), path);
+    FlightOptions f;
+    ASSERT_EQ(parse_flight_options(mission::MissionKind::kHover, opt, f), "");
+    AutonomyMission m(std::move(f));
+    (void)sim::run_mission(s, m, Duration::from_s(0.5));
+    const estimation::EkfParams& p = m.stack().filter().params();
+    EXPECT_EQ(p.pose_cov_scale, 2.0f) << (utm ? "UTM-30LX" : "URG-04LX");
+    EXPECT_EQ(p.accel_noise_xy, utm ? estimation::EkfParams{}.accel_noise_xy : autonomy::kShortReachAccelNoiseXy);
+  }
+  std::remove(path.c_str());
 }
 
 TEST(HoverClosedLoop, LateScansAreAbsorbedByTheStateHistory) {

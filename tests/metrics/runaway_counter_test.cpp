@@ -39,6 +39,19 @@ TEST(RunawayCounter, AJumpCountsOnceAndFastGrowthOncePerWindow) {
   EXPECT_EQ(back.runaways(), 2u);
 }
 
+TEST(RunawayCounter, ABadWindowOrRiseCountsNothingAndNeverBreaks) {
+  RunawayCounter negative(1.0, -5.0), nan_window(1.0, std::nan("")), nan_rise(std::nan(""), 10.0);
+  for (int i = 0; i <= 100; ++i) {
+    const double t = 0.1 * i, e = 0.5 * t;  // 5 m in 10 s
+    EXPECT_EQ(negative.add(t, e), Status::kOk);
+    EXPECT_EQ(nan_window.add(t, e), Status::kOk);
+    EXPECT_EQ(nan_rise.add(t, e), Status::kOk);
+  }
+  EXPECT_EQ(negative.runaways(), 0u);
+  EXPECT_EQ(nan_window.runaways(), 0u);
+  EXPECT_EQ(nan_rise.runaways(), 0u);
+}
+
 TEST(RunawayCounter, BadSamplesAreRefusedAndChangeNothing) {
   RunawayCounter c;
   EXPECT_EQ(c.add(0.0, 0.0), Status::kOk);

@@ -184,6 +184,9 @@ def main():
         ran = [(m["estimate_runaways"], m["sim_time_s"]) for m in ms
                if m.get("estimate_runaways") is not None and m.get("sim_time_s")]
         hours = sum(t for _, t in ran) / 3600.0
+        if len(ran) < n:
+            print(f"{w} {l} {e}: {n - len(ran)} of {n} runs have no estimate_runaways (kept from an older "
+                  "kestrel-sim?): the runaway rate is over the others", file=sys.stderr)
         print(f"| {w} | {l} | {e} | {n} | {len(all_rooms)}/{n} | {free}/{n} | {len(clean)}/{n} | {fin}/{n} | "
               f"{mmss(statistics.median(t_all)) if t_all else '-'} | {mmss(min(t_clean)) if t_clean else '-'} | "
               f"{fmt(cov, 1, True)} | "

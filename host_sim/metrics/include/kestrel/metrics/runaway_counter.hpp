@@ -15,7 +15,9 @@ namespace kestrel::metrics {
 
 class RunawayCounter {
  public:
-  explicit RunawayCounter(double rise_m = 1.0, double window_s = 10.0) : rise_m_(rise_m), window_s_(window_s) {}
+  // A negative or non-finite window is taken as 0 (each sample compared with itself: no
+  // runaway), a non-finite rise as never reached.
+  explicit RunawayCounter(double rise_m = 1.0, double window_s = 10.0);
   // kNotFinite (ignored) for a non-finite sample; kInvalidArgument (ignored) for a time before
   // the previous sample's.
   Status add(double t_s, double error_m);

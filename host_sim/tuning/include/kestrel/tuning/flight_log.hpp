@@ -34,7 +34,7 @@ struct FlightSpec {
   double hover_s = 10;                // hover mission: time at the set-point
   std::vector<Eigen::Vector4f> waypoints;  // waypoints mission: x y z (m) heading (rad), world frame
   std::string script_text;            // manual mission: CommandScript text ("" = the default tour)
-  estimation::EkfParams ekf;          // the stack's filter parameters
+  estimation::EkfParams ekf;          // the stack's filter parameters, as given (EkfParams' defaults, not the laser's: autonomy::vehicle_ekf_params)
   bool use_default_controller = true;
   control::ControllerParams controller;  // used when use_default_controller is false
 };

@@ -72,6 +72,8 @@ inline estimation::EkfParams vehicle_ekf_params(uint16_t laser_max_range_mm) {
 
 struct StackConfig {
   scan_matching::Params matcher = vehicle_matcher_params();
+  // EkfParams' defaults, the UTM-30LX's: a caller that knows its laser sets
+  // vehicle_ekf_params(max_range_mm) (kestrel-sim and kestrel-fw do).
   estimation::EkfParams ekf;
   control::ControllerParams controller = vehicle_controller_params();
   exploration::Params explorer;
