@@ -161,5 +161,34 @@ TEST(FlightOptions, AnEkfFileIsCheckedAndKeptToLoadOverTheLasersDefaults) {
   std::remove(path.c_str());
 }
 
+// slam=on|off, or a parameter file that turns it on; a bad file is refused with its line.
+TEST(FlightOptions, TheCompactSlamIsOffUnlessAsked) {
+  FlightOptions plain;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({}), plain), "");
+  EXPECT_FALSE(plain.stack.slam_enabled);
+  FlightOptions on;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", "on"}}), on), "");
+  EXPECT_TRUE(on.stack.slam_enabled);
+  const std::string path = testing::TempDir() + "flight_options_test.slam";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("iterations = 50\nmin_gain_level = 9\n", f);
+  std::fclose(f);
+  FlightOptions file;
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", path.c_str()}}), file), "");
+  EXPECT_TRUE(file.stack.slam_enabled);
+  EXPECT_EQ(file.stack.slam.iterations, 50.0f);
+  EXPECT_EQ(file.stack.slam.min_gain_level, 9.0f);
+  f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("min_points = 900\nmax_points = 100\n", f);
+  std::fclose(f);
+  FlightOptions bad;
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", path.c_str()}}), bad), "");
+  FlightOptions missing;
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", "/no/such/file"}}), missing), "");
+  std::remove(path.c_str());
+}
+
 }  // namespace
 }  // namespace kestrel::flight

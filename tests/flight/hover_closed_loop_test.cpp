@@ -30,7 +30,7 @@ struct Flight {
 };
 
 Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double hover_s, double delay_s = 0,
-                 float* accel_noise_xy = nullptr) {
+                 float* accel_noise_xy = nullptr, bool slam = false) {
   const sim::WorldParseResult world = sim::load_builtin_world(world_name);
   EXPECT_TRUE(world.ok);
   sim::SimConfig cfg;
@@ -39,6 +39,7 @@ Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double h
   sim::MissionOptions opt;
   opt.values.emplace(std::string("hover_s"), std::to_string(hover_s));
   if (delay_s > 0) opt.values.emplace(std::string("delay_s"), std::to_string(delay_s));
+  if (slam) opt.values.emplace(std::string("slam"), std::string("on"));
   FlightOptions f;
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, opt, f), "");
   AutonomyMission m(std::move(f));
@@ -92,6 +93,22 @@ TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
   EXPECT_LE(metric(f.metrics, "hover_rms_m"), 0.12);
   EXPECT_LE(metric(f.metrics, "pos_err_mean_m"), 0.03);
   EXPECT_EQ(metric(f.metrics, "heap_allocs_after_arm"), 0);
+}
+
+// With the compact SLAM on (level 3, run in lockstep by the simulator), the hover keeps the
+// same bounds, the SLAM sees the scans, the filter takes every correction it hands back, and
+// the loop still allocates nothing.
+TEST(HoverClosedLoop, WithTheCompactSlamOnTheFilterTakesItsCorrections) {
+  const Flight f = fly_hover(sim::LaserParams::urg04lx(), "cluttered-lab", kHoverS, 0, nullptr, /*slam=*/true);
+  EXPECT_FALSE(f.run.collided);
+  EXPECT_TRUE(f.finished);
+  EXPECT_LE(metric(f.metrics, "hover_rms_m"), 0.12);
+  EXPECT_LE(metric(f.metrics, "pos_err_mean_m"), 0.03);
+  EXPECT_EQ(metric(f.metrics, "heap_allocs_after_arm"), 0);
+  // One scan in ten seconds' worth at 10 Hz at least: the mailbox does not stall.
+  EXPECT_GE(metric(f.metrics, "slam_scans"), 5.0 * kHoverS);
+  EXPECT_EQ(metric(f.metrics, "nav.corrections") + metric(f.metrics, "nav.corrections_rejected"),
+            metric(f.metrics, "slam_corrections"));
 }
 
 // ekf=FILE is loaded over the laser's defaults when the mission starts: the file's key and

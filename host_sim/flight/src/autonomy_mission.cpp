@@ -8,6 +8,8 @@
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/estimation/nav_filter.hpp"
+#include "kestrel/params/param_file.hpp"
+#include "kestrel/slam/slam_params.hpp"
 #include "kestrel/output/plot.hpp"
 #include "kestrel/output/tum_writer.hpp"
 #include "kestrel/sim/flight_recorder.hpp"
@@ -220,6 +222,19 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       if (estimation::load_ekf_params(value.c_str(), out.stack.ekf, err) != Status::kOk)
         return value + ":" + std::to_string(err.line) + ": " + err.message;
       out.ekf_file = value;
+    } else if (key == "slam") {
+      // on, off, or a parameter file (modules/slam/include/kestrel/slam/slam_params.hpp) that
+      // turns it on.
+      if (value == "on" || value == "off") {
+        out.stack.slam_enabled = value == "on";
+      } else {
+        params::ParamError err;
+        auto fields = slam::slam_param_fields(out.stack.slam);
+        if (params::load_params_file(value.c_str(), fields, err) != Status::kOk)
+          return value + ":" + std::to_string(err.line) + ": " + err.message;
+        if (slam::validate(out.stack.slam) != Status::kOk) return value + ": min_points must not exceed max_points";
+        out.stack.slam_enabled = true;
+      }
     } else if (key == "controller") {
       params::ParamError err;
       if (control::load_controller_params(value.c_str(), out.stack.controller, err) != Status::kOk)
@@ -358,6 +373,8 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("map_rebuilds", c.map_rebuilds);
   out.emplace_back("scans_lost", c.scans_lost);
   out.emplace_back("map_restarts", c.map_restarts);
+  out.emplace_back("slam_scans", c.slam_scans);
+  out.emplace_back("slam_corrections", c.slam_corrections);
   out.emplace_back("imu_silences", stack_->silences().imu);
   out.emplace_back("scan_silences", stack_->silences().scan);
   out.emplace_back("setpoints_sent", c.setpoints_sent);

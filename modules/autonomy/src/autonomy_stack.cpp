@@ -23,6 +23,10 @@ Status AutonomyStack::configure(const StackConfig& c) {
     configure_error_ = "scan matcher parameters";
     return Status::kInvalidArgument;
   }
+  if (c.slam_enabled && (slam_.configure(c.slam) != Status::kOk || !(c.slam_period_s >= 0.0f && c.slam_period_s <= 10.0f))) {
+    configure_error_ = "SLAM parameters";
+    return Status::kInvalidArgument;
+  }
   if (filter_.set_params(c.ekf) != Status::kOk) {
     configure_error_ = "EKF parameters";
     return Status::kInvalidArgument;
@@ -84,6 +88,38 @@ std::size_t AutonomyStack::poll() {
 
 void AutonomyStack::background_step() {
   if (matcher_.local_map().rebuild() == Status::kOk) ++counters_.map_rebuilds;
+  // A correction not yet taken holds the next scan back: the filter applies them in order.
+  if (!slam_in_full_.load(std::memory_order_acquire) || slam_out_ready_.load(std::memory_order_acquire)) return;
+  const slam::SlamResult r = slam_.process(slam_in_.points, slam_in_.prior);
+  ++counters_.slam_scans;
+  if (r.corrected()) {
+    slam_out_ = {};
+    slam_out_.stamp = slam_in_.stamp;
+    slam_out_.pose = r.pose;
+    ++counters_.slam_corrections;
+    slam_out_ready_.store(true, std::memory_order_release);
+  }
+  slam_in_full_.store(false, std::memory_order_release);
+}
+
+void AutonomyStack::take_slam_correction() {
+  if (!slam_out_ready_.load(std::memory_order_acquire)) return;
+  (void)filter_.apply_correction(slam_out_);  // refusals are counted by the filter
+  slam_out_ready_.store(false, std::memory_order_release);
+  nav_ = filter_.state();
+}
+
+void AutonomyStack::offer_scan_to_slam() {
+  if (slam_in_full_.load(std::memory_order_acquire)) return;
+  if (slam_offered_ && scan_.stamp - last_slam_offer_ < Duration::from_s(config_.slam_period_s)) return;
+  scan_matching::PosePrior at_scan;
+  if (!scan_prior_from_nav(nav_, scan_.stamp, at_scan)) return;
+  slam_in_.points = matcher_.scan_points();
+  slam_in_.prior = at_scan.pose;
+  slam_in_.stamp = scan_.stamp;
+  last_slam_offer_ = scan_.stamp;
+  slam_offered_ = true;
+  slam_in_full_.store(true, std::memory_order_release);
 }
 
 void AutonomyStack::run_imu(void* self, TimeUs release) { static_cast<AutonomyStack*>(self)->imu_task(release); }
@@ -143,8 +179,11 @@ void AutonomyStack::scan_task(TimeUs now) {
   // Centre the search on the filter's pose at the scan's time: the IMU carries it through a
   // turn or a lost match, where the matcher's own constant-velocity guess would not. Its
   // uncertainty sizes the window: what the filter has not already accounted for.
+  if (config_.slam_enabled) take_slam_correction();
   scan_matching::PosePrior prior;
   const scan_matching::PosePrior* prior_ptr = scan_prior_from_nav(nav_, scan_.stamp, prior) ? &prior : nullptr;
+  // The filter's frame has moved by the SLAM's corrections; the matcher's map has not.
+  if (prior_ptr != nullptr && filter_.counters().corrections > 0) prior = prior_in_matcher_frame(prior, filter_.frame_correction());
   last_match_ = matcher_.process(scan_, prior_ptr);
   new_match_ = true;
   // The laser is alive while it delivers scans the matcher could use: a scan with too few
@@ -165,6 +204,7 @@ void AutonomyStack::scan_task(TimeUs now) {
   // update per scan lets the filter learn its accelerometer biases on every axis.
   if (mission_.at_rest() && !armed_) (void)filter_.update_at_rest(scan_.stamp, config_.ekf.at_rest_var);
   nav_ = filter_.state();
+  if (config_.slam_enabled) offer_scan_to_slam();
   guidance_scan_ = scan_;
   guidance_scan_fresh_ = true;
 }

@@ -29,4 +29,14 @@ bool scan_prior_from_nav(const NavState& nav, TimeUs scan_stamp, scan_matching::
   return true;
 }
 
+scan_matching::PosePrior prior_in_matcher_frame(const scan_matching::PosePrior& world, const Pose2& frame_correction) {
+  const Pose2 back = frame_correction.inverse();
+  scan_matching::PosePrior m = world;
+  m.pose = back.compose(world.pose);
+  const float c = std::cos(back.theta), s = std::sin(back.theta);
+  m.vx_mps = c * world.vx_mps - s * world.vy_mps;
+  m.vy_mps = s * world.vx_mps + c * world.vy_mps;
+  return m;
+}
+
 }  // namespace kestrel::autonomy

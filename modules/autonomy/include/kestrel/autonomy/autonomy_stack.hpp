@@ -6,11 +6,14 @@
 // and runs them as the real-time loop (level 2 of paper 000 Figure 4) on the core Scheduler,
 // with the task table of task_table.hpp. The scan matcher's local-map rebuild is level 3:
 // background_step() runs it, from a background thread on a board or in lockstep after each
-// poll in the simulator (deterministic), and the loop never waits for it.
+// poll in the simulator (deterministic), and the loop never waits for it. So does the compact
+// SLAM when it is enabled: the scan task hands it a matched scan through a one-slot mailbox and
+// applies the correction it hands back at the next scan; neither side ever waits.
 //
-// Memory: everything is inside this object (about 1.2 MiB with the on-board map), which the
+// Memory: everything is inside this object (about 11 MiB with the on-board map and the SLAM's), which the
 // firmware allocates once at start-up (static storage or one allocation before arming). After
 // start() nothing allocates.
+#include <atomic>
 #include <cstdint>
 
 #include "kestrel/autonomy/return_velocity_bound.hpp"
@@ -31,6 +34,7 @@
 #include "kestrel/hal/laser_scanner.hpp"
 #include "kestrel/mission/mission_controller.hpp"
 #include "kestrel/scan_matching/scan_matcher.hpp"
+#include "kestrel/slam/compact_slam.hpp"
 
 namespace kestrel::autonomy {
 
@@ -61,6 +65,8 @@ struct StackCounters {
   uint32_t scans_lost = 0;           // matched nothing: the pose is the filter's prediction
   uint32_t map_restarts = 0;         // lost too long: the local map started again
   uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
+  uint32_t slam_scans = 0;           // scans the SLAM processed
+  uint32_t slam_corrections = 0;     // corrections it handed back (the filter may refuse some)
 };
 
 class AutonomyStack {
@@ -78,7 +84,8 @@ class AutonomyStack {
   // Runs the tasks that are due; returns how many ran.
   std::size_t poll();
   TimeUs next_release() const { return scheduler_.next_release(); }
-  // Level 3: rebuilds the scan matcher's local map if a key scan is waiting.
+  // Level 3: rebuilds the scan matcher's local map if a key scan is waiting, and runs the
+  // SLAM on the scan waiting for it, if any.
   void background_step();
 
   const NavState& nav() const { return nav_; }
@@ -91,6 +98,7 @@ class AutonomyStack {
   const exploration::Explorer* explorer() const { return explorer_; }
   const estimation::NavFilter& filter() const { return filter_; }
   const scan_matching::ScanMatcher& matcher() const { return matcher_; }
+  const slam::CompactSlam& slam() const { return slam_; }
   const Scheduler& scheduler() const { return scheduler_; }
   const StackCounters& counters() const { return counters_; }
   // How often the IMU and the laser fell silent for longer than their timeouts.
@@ -106,6 +114,8 @@ class AutonomyStack {
   void scan_task(TimeUs now);
   void guidance_task(TimeUs now);
   void control_task(TimeUs now);
+  void take_slam_correction();
+  void offer_scan_to_slam();
 
   Devices dev_;
   StackConfig config_;
@@ -123,6 +133,23 @@ class AutonomyStack {
   exploration::WallFollowExplorer wallfollow_;
   exploration::SrtExplorer srt_;
   exploration::Explorer* explorer_ = nullptr;
+  slam::SlamMap slam_map_;
+  slam::CompactSlam slam_{slam_map_};
+
+  // The SLAM's mailboxes, one slot each way. The scan task fills slam_in_ only while
+  // slam_in_full_ is false and then sets it; background_step() reads it only while it is set
+  // and clears it when done; the same for the correction the other way.
+  struct SlamInput {
+    scan_matching::ScanPoints points;
+    Pose2 prior;
+    TimeUs stamp;
+  };
+  SlamInput slam_in_;
+  std::atomic<bool> slam_in_full_{false};
+  PoseMeasurement2 slam_out_;
+  std::atomic<bool> slam_out_ready_{false};
+  TimeUs last_slam_offer_;
+  bool slam_offered_ = false;
 
   LaserScan scan_;             // the scan being matched
   LaserScan guidance_scan_;    // the newest matched scan, for the explorer

@@ -16,4 +16,9 @@ inline constexpr float kMaxPriorExtrapolationS = 0.5f;
 // kMaxPriorExtrapolationS of it; false (prior untouched) otherwise.
 bool scan_prior_from_nav(const NavState& nav, TimeUs scan_stamp, scan_matching::PosePrior& prior);
 
+// The same prior in the scan matcher's frame. The filter's frame is the matcher's moved by the
+// SLAM's corrections (NavFilter::frame_correction(), world = correction * matcher), and the
+// matcher's map stays where it was drawn.
+scan_matching::PosePrior prior_in_matcher_frame(const scan_matching::PosePrior& world, const Pose2& frame_correction);
+
 }  // namespace kestrel::autonomy

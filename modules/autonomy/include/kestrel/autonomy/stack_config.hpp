@@ -10,6 +10,7 @@
 #include "kestrel/exploration/params.hpp"
 #include "kestrel/mission/mission_controller.hpp"
 #include "kestrel/scan_matching/params.hpp"
+#include "kestrel/slam/slam_params.hpp"
 
 namespace kestrel::autonomy {
 
@@ -87,6 +88,12 @@ struct StackConfig {
   // Apply each scan-matcher pose at the time its scan was taken (the EKF's state history), or,
   // false, as if taken on arrival: the comparison of paper 000 Figure 3b.
   bool use_measurement_time = true;
+  // The compact SLAM (level 3, modules/slam): off, the filter runs on the scan matcher alone.
+  // On, every matched scan at most slam_period_s after the last one is handed to it, and its
+  // corrections reach the filter through NavFilter::apply_correction.
+  bool slam_enabled = false;
+  slam::SlamParams slam;
+  float slam_period_s = 0.1f;
   // How long the IMU or the laser may stay silent before the mission is told the estimate is
   // stale (and its failsafe lands the vehicle): sensor_watchdog.hpp.
   SensorTimeouts sensor_timeouts;

@@ -65,7 +65,7 @@
 #include "kestrel/core/status.hpp"
 #include "kestrel/core/time.hpp"
 #include "kestrel/exploration/params.hpp"
-#include "kestrel/exploration/prng.hpp"
+#include "kestrel/core/prng.hpp"
 #include "kestrel/exploration/sector_scan.hpp"
 #include "kestrel/exploration/srt_star_tree.hpp"
 #include "kestrel/exploration/unflown_bearings.hpp"

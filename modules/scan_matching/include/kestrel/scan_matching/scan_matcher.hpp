@@ -72,6 +72,8 @@ class ScanMatcher {
   ScanMatch process(const LaserScan& scan, const PosePrior* prior = nullptr);
 
   LocalMap& local_map() { return local_; }
+  // The newest scan's returns in the sensor frame, deskewed to its stamp when a prior was given.
+  const ScanPoints& scan_points() const { return key_.points; }
   const Params& params() const { return params_; }
   CorrelativeSearch& search() { return search_; }
 

@@ -1,9 +1,10 @@
 #pragma once
 // Small deterministic pseudo-random generator (xorshift32, Marsaglia 2003) for SRT-Star's
-// random waypoints: seeded, no state outside the object, identical on every target.
+// random waypoints and the compact SLAM's search: seeded, no state outside the object,
+// identical on every target.
 #include <cstdint>
 
-namespace kestrel::exploration {
+namespace kestrel {
 
 class Prng {
  public:
@@ -26,4 +27,4 @@ class Prng {
   uint32_t state_ = 1;
 };
 
-}  // namespace kestrel::exploration
+}  // namespace kestrel

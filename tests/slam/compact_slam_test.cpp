@@ -1,0 +1,149 @@
+// The compact SLAM as the stack runs it: scans with the filter's (drifting) pose, corrections
+// back, and its defined behaviour on bad inputs.
+#include "kestrel/slam/compact_slam.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "kestrel/core/alloc_guard.hpp"
+#include "slam_scans.hpp"
+
+namespace kestrel::slam {
+namespace {
+
+struct Rig {
+  std::unique_ptr<SlamMap> map = std::make_unique<SlamMap>();
+  std::unique_ptr<CompactSlam> slam = std::make_unique<CompactSlam>(*map);
+};
+
+// A filter whose pose drifts by `drift` per scan and takes every correction: what is left of
+// its error after `scans` scans along a loop through the world.
+struct Flight {
+  float final_error_m = 0;
+  float worst_error_m = 0;
+  uint32_t corrections = 0;
+  float corrected_along_x_m = 0;  // sum of |x| shifts the corrections made
+};
+
+Flight fly(Rig& r, const test::SegmentWorld& w, const test::LaserModel& laser, int scans, Pose2 drift,
+           float radius_x, float radius_y) {
+  Flight f;
+  Pose2 offset{};
+  for (int k = 0; k < scans; ++k) {
+    const float a = 0.02f * k;
+    const Pose2 truth{radius_x * std::sin(a), radius_y * (1.0f - std::cos(a)) - 0.5f * radius_y, 0.5f * a};
+    const Pose2 prior{truth.x + offset.x, truth.y + offset.y, wrap_angle(truth.theta + offset.theta)};
+    const SlamResult res = r.slam->process(test::scan_points(w, laser, truth), prior);
+    if (res.corrected()) {
+      ++f.corrections;
+      f.corrected_along_x_m += std::fabs(res.pose.x - prior.x);
+      offset = {res.pose.x - truth.x, res.pose.y - truth.y, wrap_angle(res.pose.theta - truth.theta)};
+    }
+    const float err = std::hypot(offset.x, offset.y);
+    f.worst_error_m = std::max(f.worst_error_m, err);
+    f.final_error_m = err;
+    // The filter holds still while the map warms up, as it does on the ground.
+    if (k >= static_cast<int>(SlamParams{}.warmup_scans)) offset = {offset.x + drift.x, offset.y + drift.y, offset.theta + drift.theta};
+  }
+  return f;
+}
+
+TEST(CompactSlam, ConfigureRefusesBadParameters) {
+  Rig r;
+  SlamParams p;
+  EXPECT_EQ(r.slam->configure(p), Status::kOk);
+  p.cell_m = 0;
+  EXPECT_EQ(r.slam->configure(p), Status::kInvalidArgument);
+  p = {};
+  p.iterations = NAN;
+  EXPECT_EQ(r.slam->configure(p), Status::kInvalidArgument);
+  p = {};
+  p.min_points = 500;
+  p.max_points = 100;
+  EXPECT_EQ(r.slam->configure(p), Status::kInvalidArgument);
+}
+
+TEST(CompactSlam, TheFirstScanStartsTheMapAndTheWarmUpDrawsAtThePrior) {
+  Rig r;
+  SlamParams p;
+  p.warmup_scans = 3;
+  ASSERT_EQ(r.slam->configure(p), Status::kOk);
+  const test::SegmentWorld w = test::slam_room();
+  const Pose2 at{0.5f, 0.2f, 0.1f};
+  const scan_matching::ScanPoints pts = test::scan_points(w, test::LaserModel::urg04lx(), at);
+  SlamResult res = r.slam->process(pts, at);
+  EXPECT_EQ(res.flags, slam_flag::kStarted | slam_flag::kDrawn);
+  EXPECT_TRUE(r.slam->started());
+  EXPECT_GT(r.slam->map().known_cells(), 1000u);
+  for (int i = 0; i < 2; ++i) {
+    res = r.slam->process(pts, at);
+    EXPECT_EQ(res.flags, slam_flag::kWarmingUp | slam_flag::kDrawn);
+  }
+  // Past the warm-up, the search runs; at the true pose there is nothing to gain.
+  res = r.slam->process(pts, at);
+  EXPECT_TRUE((res.flags & slam_flag::kMatched) != 0);
+  EXPECT_FALSE(res.corrected());
+  EXPECT_EQ(res.pose.x, at.x);
+  EXPECT_LT(res.level, 100.0f);  // three draws: the walls are well below unknown (128)
+}
+
+TEST(CompactSlam, CorrectionsHoldADriftingFilterOnTheMap) {
+  Rig r;
+  ASSERT_EQ(r.slam->configure({}), Status::kOk);
+  // 2 cm and 0.2 degrees of drift per scan: 6 m and 60 degrees over the flight without SLAM.
+  const Flight f = fly(r, test::slam_room(), test::LaserModel::urg04lx(), 300, {0.02f, -0.01f, 0.0035f}, 2.0f, 1.2f);
+  EXPECT_GT(f.corrections, 50u);
+  EXPECT_LT(f.worst_error_m, 0.25f);
+  EXPECT_LT(f.final_error_m, 0.1f);
+  EXPECT_EQ(r.slam->counters().corrections, f.corrections);
+}
+
+TEST(CompactSlam, AlongACorridorItDoesNotCorrectWhatTheWallsCannotSay) {
+  Rig r;
+  ASSERT_EQ(r.slam->configure({}), Status::kOk);
+  // Flying 6 m along the corridor with a filter that drifts across it: the walls pull the pose
+  // back across, and the corrections, which the map cannot support along it, leave x alone.
+  const Flight f = fly(r, test::slam_corridor(), test::LaserModel::urg04lx(), 160, {0.0f, 0.005f, 0.0f}, 3.0f, 0.4f);
+  EXPECT_GT(f.corrections, 5u);
+  EXPECT_LT(f.worst_error_m, 0.1f);
+  EXPECT_LT(f.corrected_along_x_m, 0.1f);
+}
+
+TEST(CompactSlam, BadInputsAreIgnoredWithAReason) {
+  Rig r;
+  ASSERT_EQ(r.slam->configure({}), Status::kOk);
+  const scan_matching::ScanPoints pts = test::scan_points(test::slam_room(), test::LaserModel::urg04lx(), {});
+  SlamResult res = r.slam->process(pts, Pose2{NAN, 0, 0});
+  EXPECT_EQ(res.flags, slam_flag::kNotFinite);
+  EXPECT_FALSE(r.slam->started());
+  scan_matching::ScanPoints few = pts;
+  few.count = 5;
+  res = r.slam->process(few, Pose2{});
+  EXPECT_EQ(res.flags, slam_flag::kTooFewPoints);
+  EXPECT_FALSE(r.slam->started());
+  EXPECT_EQ(r.slam->counters().too_few_points, 1u);
+  // Points that are not finite are dropped, not drawn.
+  scan_matching::ScanPoints bad = pts;
+  for (uint16_t i = 0; i < bad.count; i += 3) bad.x[i] = NAN;
+  res = r.slam->process(bad, Pose2{});
+  EXPECT_TRUE((res.flags & slam_flag::kStarted) != 0);
+  MapScan all;
+  thin_to_map_scan(pts, r.slam->map().cell_m(), static_cast<uint16_t>(SlamParams{}.max_points), all);
+  EXPECT_LT(res.points, all.count);
+  EXPECT_GT(res.points, all.count / 2);
+}
+
+TEST(CompactSlam, ProcessingAllocatesNothing) {
+  Rig r;
+  ASSERT_EQ(r.slam->configure({}), Status::kOk);
+  const test::SegmentWorld w = test::slam_room();
+  const auto pts = std::make_unique<scan_matching::ScanPoints>(test::scan_points(w, test::LaserModel::utm30lx(), {}));
+  alloc_guard::Scope guard;
+  for (int i = 0; i < 20; ++i) (void)r.slam->process(*pts, Pose2{0.01f * i, 0, 0});
+  EXPECT_EQ(guard.allocations(), 0u);
+}
+
+}  // namespace
+}  // namespace kestrel::slam
