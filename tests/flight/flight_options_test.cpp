@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -161,14 +162,20 @@ TEST(FlightOptions, AnEkfFileIsCheckedAndKeptToLoadOverTheLasersDefaults) {
   std::remove(path.c_str());
 }
 
-// slam=on|off, or a parameter file that turns it on; a bad file is refused with its line.
-TEST(FlightOptions, TheCompactSlamIsOffUnlessAsked) {
+// slam=on|off, or a parameter file that turns it on; unset, start() asks the laser
+// (autonomy::vehicle_slam_enabled); a bad file is refused with its line.
+TEST(FlightOptions, TheCompactSlamFollowsTheLaserUnlessAsked) {
+  EXPECT_TRUE(autonomy::vehicle_slam_enabled(4000));
+  EXPECT_FALSE(autonomy::vehicle_slam_enabled(30000));
+  EXPECT_FALSE(autonomy::vehicle_slam_enabled(0));
   FlightOptions plain;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({}), plain), "");
-  EXPECT_FALSE(plain.stack.slam_enabled);
-  FlightOptions on;
+  EXPECT_FALSE(plain.slam_on.has_value());
+  FlightOptions on, off;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", "on"}}), on), "");
-  EXPECT_TRUE(on.stack.slam_enabled);
+  EXPECT_EQ(on.slam_on, std::optional<bool>(true));
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", "off"}}), off), "");
+  EXPECT_EQ(off.slam_on, std::optional<bool>(false));
   const std::string path = testing::TempDir() + "flight_options_test.slam";
   std::FILE* f = std::fopen(path.c_str(), "w");
   ASSERT_NE(f, nullptr);
@@ -176,7 +183,7 @@ TEST(FlightOptions, TheCompactSlamIsOffUnlessAsked) {
   std::fclose(f);
   FlightOptions file;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", path.c_str()}}), file), "");
-  EXPECT_TRUE(file.stack.slam_enabled);
+  EXPECT_EQ(file.slam_on, std::optional<bool>(true));
   EXPECT_EQ(file.stack.slam.iterations, 50.0f);
   EXPECT_EQ(file.stack.slam.min_gain_level, 9.0f);
   f = std::fopen(path.c_str(), "w");

@@ -226,14 +226,14 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       // on, off, or a parameter file (modules/slam/include/kestrel/slam/slam_params.hpp) that
       // turns it on.
       if (value == "on" || value == "off") {
-        out.stack.slam_enabled = value == "on";
+        out.slam_on = value == "on";
       } else {
         params::ParamError err;
         auto fields = slam::slam_param_fields(out.stack.slam);
         if (params::load_params_file(value.c_str(), fields, err) != Status::kOk)
           return value + ":" + std::to_string(err.line) + ": " + err.message;
         if (slam::validate(out.stack.slam) != Status::kOk) return value + ": min_points must not exceed max_points";
-        out.stack.slam_enabled = true;
+        out.slam_on = true;
       }
     } else if (key == "controller") {
       params::ParamError err;
@@ -276,6 +276,7 @@ Status AutonomyMission::start(sim::Simulation& sim) {
       return Status::kInvalidArgument;
     }
   }
+  cfg.slam_enabled = options_.slam_on.value_or(autonomy::vehicle_slam_enabled(laser->geometry().max_range_mm));
   if (stack_->configure(cfg) != Status::kOk) {
     failure_ = std::string("autonomy stack configuration: ") + stack_->configure_error();
     return Status::kInvalidArgument;

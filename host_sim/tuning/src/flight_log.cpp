@@ -96,6 +96,7 @@ std::string fly_and_record(const FlightSpec& spec, FlightLog& log) {
     fo.stack.mission.hover_duration_s = static_cast<float>(spec.hover_s);
     fo.stack.ekf = spec.ekf;
     fo.ekf_for_laser = false;  // the parameters under test, whatever the laser
+    fo.slam_on = false;        // the filter under test on the scan matcher alone
     if (!spec.use_default_controller) fo.stack.controller = spec.controller;
     if (spec.kind == FlightKind::kWaypoints) {
       for (const Eigen::Vector4f& w : spec.waypoints) {

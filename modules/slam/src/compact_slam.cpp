@@ -13,7 +13,13 @@ Status CompactSlam::configure(const SlamParams& p) {
   return Status::kOk;
 }
 
+bool CompactSlam::due_to_draw(const Pose2& pose) const {
+  return std::hypot(pose.x - last_drawn_.x, pose.y - last_drawn_.y) >= params_.draw_every_m ||
+         std::fabs(wrap_angle(pose.theta - last_drawn_.theta)) >= params_.draw_every_rad;
+}
+
 void CompactSlam::draw(const Pose2& pose) {
+  last_drawn_ = pose;
   const ScanPlacement at(map_, pose);
   const float to_sub = kSub / map_.cell_m();
   const auto hole_half = static_cast<int32_t>(0.5f * params_.hole_width_m * to_sub);
@@ -84,8 +90,13 @@ SlamResult CompactSlam::process(const scan_matching::ScanPoints& points, const P
     r.pose = fit.pose;
     ++counters_.corrections;
   }
-  draw((r.flags & kTooFar) != 0 ? prior : fit.pose);
-  r.flags |= kDrawn;
+  // Drawn where it fits best (the anchor and supported_move keep that at the filter's pose
+  // where the map cannot tell), unless the search jumped beyond the correction's limits.
+  const Pose2 at = (r.flags & kTooFar) != 0 ? prior : fit.pose;
+  if (due_to_draw(at)) {
+    draw(at);
+    r.flags |= kDrawn;
+  }
   return r;
 }
 

@@ -46,6 +46,7 @@ struct Options {
   std::string mission = "hover";
   std::string explorer = "blend";
   std::string ekf_file, controller_file;
+  std::string slam = "laser";  // on, off, or the laser's default
   double hover_s = 60;
   double max_s = 900;
 };
@@ -53,7 +54,7 @@ struct Options {
 constexpr const char* kUsage =
     "usage: kestrel-fw (--hil HOST:PORT | --hokuyo DEV --autopilot DEV [--baud N])\n"
     "                  [--laser utm30lx|urg04lx] [--mission hover|explore] [--explorer blend|wallfollow|srt]\n"
-    "                  [--hover-s S] [--max-s S] [--ekf FILE] [--controller FILE]\n";
+    "                  [--hover-s S] [--max-s S] [--ekf FILE] [--controller FILE] [--slam on|off]\n";
 
 int usage(const char* why) {
   std::fprintf(stderr, "kestrel-fw: %s\n%s", why, kUsage);
@@ -73,6 +74,7 @@ int help() {
       "  --max-s S          stop after S seconds (default 900)\n"
       "  --ekf FILE         EKF parameter file (kestrel-tune-ekf writes one), over the laser's defaults\n"
       "  --controller FILE  controller parameter file (kestrel-sysid writes one)\n"
+      "  --slam on|off      the compact SLAM at level 3 (default: on with the urg04lx, off with the utm30lx)\n"
       "  --help             this text\n"
       "Exit status 2 for a usage error.\n",
       stdout);
@@ -109,6 +111,9 @@ bool parse(int argc, char** argv, Options& o, std::string& err) {
       if (!value(o.ekf_file)) return false;
     } else if (a == "--controller") {
       if (!value(o.controller_file)) return false;
+    } else if (a == "--slam") {
+      if (!value(o.slam)) return false;
+      if (o.slam != "on" && o.slam != "off") return err = "--slam: expected on or off, got '" + o.slam + "'", false;
     } else if (a == "--baud" || a == "--hover-s" || a == "--max-s") {
       if (!value(v)) return false;
       char* end = nullptr;
@@ -151,6 +156,7 @@ int main(int argc, char** argv) {
   const platform::HokuyoModel model =
       opt.laser == "urg04lx" ? platform::HokuyoModel::urg04lx() : platform::HokuyoModel::utm30lx();
   cfg.ekf = autonomy::vehicle_ekf_params(model.max_range_mm);  // --ekf FILE loads over these
+  cfg.slam_enabled = opt.slam == "laser" ? autonomy::vehicle_slam_enabled(model.max_range_mm) : opt.slam == "on";
   params::ParamError perr;
   if (!opt.ekf_file.empty() && estimation::load_ekf_params(opt.ekf_file.c_str(), cfg.ekf, perr) != Status::kOk) {
     std::fprintf(stderr, "kestrel-fw: %s:%d: %s\n", opt.ekf_file.c_str(), perr.line, perr.message);

@@ -17,6 +17,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <optional>
 #include <vector>
 
 #include "kestrel/autonomy/autonomy_stack.hpp"
@@ -37,6 +38,9 @@ struct FlightOptions {
   // and loads ekf_file (ekf=FILE) over them; false keeps stack.ekf as it is (the tuning tools).
   bool ekf_for_laser = true;
   std::string ekf_file;
+  // The compact SLAM: on or off (slam=on|off|FILE), or, unset, as the simulated laser's
+  // default (autonomy::vehicle_slam_enabled); stack.slam holds its parameters.
+  std::optional<bool> slam_on;
   double delay_s = 0;
   bool use_measurement_time = true;
 };

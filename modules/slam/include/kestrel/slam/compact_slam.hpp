@@ -80,6 +80,7 @@ class CompactSlam {
 
  private:
   void draw(const Pose2& pose);
+  bool due_to_draw(const Pose2& pose) const;
   bool within_limits(const Pose2& prior, const Pose2& pose) const;
 
   SlamMap& map_;
@@ -87,6 +88,7 @@ class CompactSlam {
   SlamCounters counters_;
   MapScan scan_;
   Prng prng_{1};
+  Pose2 last_drawn_;
   bool started_ = false;
 };
 

@@ -13,7 +13,12 @@ struct SlamParams {
   float cell_m = 0.06f;           // cell side; the 1024-cell map spans 1024 times this
   float hole_width_m = 0.4f;      // width of the V drawn across each return (CoreSLAM's "hole")
   float clear_reach_m = 4.0f;     // how far before each return its ray clears the map
-  float weight = 50.0f;           // how far a cell moves towards a return's profile, of 256
+  float weight = 30.0f;           // how far a cell moves towards a return's profile, of 256
+  // A scan is drawn only when the sensor has moved this far or turned this much since the last
+  // scan drawn: a hovering vehicle would otherwise redraw its own error into the map ten
+  // times a second, and the map would follow the filter instead of holding it.
+  float draw_every_m = 0.3f;
+  float draw_every_rad = 0.2f;
   // --- search (map_scan.hpp)
   float iterations = 200.0f;      // Monte Carlo candidates per scan
   float sigma_xy_m = 0.08f;       // first spread of the candidates around the best so far
@@ -31,7 +36,7 @@ struct SlamParams {
   float max_correction_rad = 0.1f;
 };
 
-inline constexpr std::size_t kSlamParamCount = 17;
+inline constexpr std::size_t kSlamParamCount = 19;
 std::array<params::ParamField, kSlamParamCount> slam_param_fields(SlamParams& p);
 Status validate(const SlamParams& p);
 
