@@ -104,5 +104,37 @@ TEST(ScanPriorTest, NoPriorFromANonFiniteState) {
   EXPECT_FALSE(scan_prior_from_nav(nav, kScanStamp, prior));
 }
 
+// After SLAM corrections the filter's frame is the matcher's moved by F (world = F * matcher):
+// the prior handed to the matcher is the world prior taken back through F, pose and velocity,
+// so that composing it with F again gives the world prior.
+TEST(ScanPriorTest, TakenBackIntoTheMatchersFrameThroughTheSlamsCorrection) {
+  PosePrior world;
+  world.pose = {3.0f, -2.0f, 0.4f};
+  world.vx_mps = 0.5f;
+  world.vy_mps = -0.2f;
+  world.yaw_rate_radps = 0.3f;
+  world.position_std_m = 0.05f;
+  world.heading_std_rad = 0.01f;
+  const Pose2 f{0.7f, -0.4f, 0.2f};
+  const PosePrior m = prior_in_matcher_frame(world, f);
+  const Pose2 back = f.compose(m.pose);
+  EXPECT_NEAR(back.x, world.pose.x, 1e-5f);
+  EXPECT_NEAR(back.y, world.pose.y, 1e-5f);
+  EXPECT_NEAR(back.theta, world.pose.theta, 1e-5f);
+  // The velocity turns with the frame: rotated by F's angle it is the world velocity again.
+  const float c = std::cos(f.theta), s = std::sin(f.theta);
+  EXPECT_NEAR(c * m.vx_mps - s * m.vy_mps, world.vx_mps, 1e-5f);
+  EXPECT_NEAR(s * m.vx_mps + c * m.vy_mps, world.vy_mps, 1e-5f);
+  EXPECT_NEAR(std::hypot(m.vx_mps, m.vy_mps), std::hypot(world.vx_mps, world.vy_mps), 1e-5f);
+  // What no frame changes: the yaw rate and the uncertainties.
+  EXPECT_EQ(m.yaw_rate_radps, world.yaw_rate_radps);
+  EXPECT_EQ(m.position_std_m, world.position_std_m);
+  EXPECT_EQ(m.heading_std_rad, world.heading_std_rad);
+  // No correction: the same prior.
+  const PosePrior same = prior_in_matcher_frame(world, Pose2{});
+  EXPECT_EQ(same.pose.x, world.pose.x);
+  EXPECT_EQ(same.vx_mps, world.vx_mps);
+}
+
 }  // namespace
 }  // namespace kestrel::autonomy

@@ -67,10 +67,11 @@ TEST(SlamMap, ReturnsReachingOffTheMapDrawOnlyWhatIsOnIt) {
   map->draw_return(sensor, hit, 4 * kSub, 60 * kSub, 128);
   EXPECT_GT(map->known_cells(), 15u);
   EXPECT_LT(map->known_cells(), 25u);
+  const std::size_t before = map->known_cells();
   // Sensor and hit far outside: nothing on the map changes, nothing crashes.
   map->draw_return({-100 * kSub, -100 * kSub}, {-300 * kSub, -100 * kSub}, 4 * kSub, 60 * kSub, 128);
+  EXPECT_EQ(map->known_cells(), before);
   // Degenerate inputs: a zero-length return, a zero weight, a zero hole.
-  const std::size_t before = map->known_cells();
   map->draw_return(sensor, sensor, 4 * kSub, 60 * kSub, 128);
   map->draw_return(sensor, hit, 4 * kSub, 60 * kSub, 0);
   map->draw_return(sensor, hit, 0, 60 * kSub, 128);

@@ -3,8 +3,8 @@
 namespace kestrel::autonomy {
 
 // DESIGN.md: the Verdex's firmware within 16 MiB in all. The stack is allocated at start-up, so
-// the budget tool (static RAM) does not see it: 11.4 MiB with the 20 m local map, and 1 MiB left
-// for the rest of the firmware, which is tens of KiB.
+// the budget tool (static RAM) does not see it: 12.4 MiB with the 20 m local map and the compact
+// SLAM's 1 MiB map, and 1 MiB kept for the rest of the firmware, which is tens of KiB.
 static_assert(sizeof(AutonomyStack) < 15u * 1024u * 1024u, "AutonomyStack outgrows the Verdex's 16 MiB");
 
 AutonomyStack::AutonomyStack(const Devices& devices, const TimeSource& exec_clock)
@@ -110,8 +110,13 @@ void AutonomyStack::take_slam_correction() {
 }
 
 void AutonomyStack::offer_scan_to_slam() {
-  if (slam_in_full_.load(std::memory_order_acquire)) return;
-  if (slam_offered_ && scan_.stamp - last_slam_offer_ < Duration::from_s(config_.slam_period_s)) return;
+  // A correction that arrived since this scan's update would leave the prior stale: the next
+  // scan is offered instead (on a board, background_step runs on its own thread).
+  if (slam_in_full_.load(std::memory_order_acquire) || slam_out_ready_.load(std::memory_order_acquire)) return;
+  // Half a laser period of slack: a Hokuyo's stamps are whole milliseconds that jitter, and a
+  // 10 Hz laser's 99 ms gap must not halve the SLAM's rate.
+  const Duration period = Duration::from_s(config_.slam_period_s) - Duration{dev_.laser.geometry().scan_period.us / 2};
+  if (slam_offered_ && scan_.stamp - last_slam_offer_ < period) return;
   scan_matching::PosePrior at_scan;
   if (!scan_prior_from_nav(nav_, scan_.stamp, at_scan)) return;
   slam_in_.points = matcher_.scan_points();

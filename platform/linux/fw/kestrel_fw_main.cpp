@@ -219,7 +219,8 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
-  // Level 3 on its own thread: it only ever touches the scan matcher's idle map buffer.
+  // Level 3 on its own thread: it only ever touches the scan matcher's idle map buffer and the
+  // compact SLAM, which the scan task reaches through one-slot mailboxes (autonomy_stack.hpp).
   std::atomic<bool> run_background{true};
   std::thread background([&] {
     while (run_background.load()) {

@@ -98,9 +98,10 @@ struct StackConfig {
   // false, as if taken on arrival: the comparison of paper 000 Figure 3b.
   bool use_measurement_time = true;
   // The compact SLAM (level 3, modules/slam): off, the filter runs on the scan matcher alone.
-  // On, every matched scan at most slam_period_s after the last one is handed to it, and its
-  // corrections reach the filter through NavFilter::apply_correction. Off here; a caller that
-  // knows its laser sets vehicle_slam_enabled(max_range_mm) (kestrel-sim and kestrel-fw do).
+  // On, a matched scan is handed to it when it is idle and slam_period_s (less half a laser
+  // period) has passed since the last one, and its corrections reach the filter through
+  // NavFilter::apply_correction. Off here; a caller that knows its laser sets
+  // vehicle_slam_enabled(max_range_mm) (kestrel-sim and kestrel-fw do).
   bool slam_enabled = false;
   slam::SlamParams slam;
   float slam_period_s = 0.1f;

@@ -14,9 +14,12 @@
 // A correction is handed back only when the scan fits the map well at the new pose (its mean
 // map value under max_fit_level: its returns on drawn walls) and clearly better than at the
 // filter's pose (by min_gain_level): along a corridor whose ends are out of reach the fit is
-// flat, and the search's anchor (SearchAnchor) holds it at the filter's pose. Each scan is drawn
-// where it fits best, as CoreSLAM draws it, whether or not the filter is corrected: drawn at
-// the filter's pose, a slow drift below the correction threshold would bend the map with it.
+// flat, and the search's anchor (SearchAnchor) holds it at the filter's pose. A scan is drawn
+// where it fits best, as CoreSLAM draws it, whether or not the filter is corrected (drawn at
+// the filter's pose, a slow drift below the correction threshold would bend the map with it),
+// but only once the sensor has moved draw_every_m or turned draw_every_rad since the last scan
+// drawn: drawn ten times a second, the walls took the pose of the last second, the map followed
+// the filter instead of holding it, and two copies of a wall made the search snap between them.
 //
 // No heap: the map is the caller's (1 MiB, allocated once); everything else is inside.
 #include <cstdint>

@@ -3,7 +3,7 @@
 // tinySLAM): one byte per cell, kWall on a wall, kFree where the laser has cleared the space,
 // kUnknown where it has not looked. Every return draws a V-shaped trough across its cell,
 // wall at the bottom, so that a scan's mean cell value falls smoothly as the scan slides onto
-// the walls: the search (map_scan.hpp) follows that slope.
+// the walls: the search (scan_fit.hpp) follows that slope.
 //
 // Positions inside the map are integers in 1/256 of a cell (kSub), so the map's hot loops run
 // in integer arithmetic on the FPU-less Verdex; the bilinear sample between four cells is
@@ -69,7 +69,7 @@ class SlamMap {
   // kWall at the hit; each by `weight`/256 of the way. Cells off the map are skipped.
   void draw_return(SubPoint sensor, SubPoint hit, int32_t hole_half_sub, int32_t clear_sub, uint8_t weight);
 
-  // Fraction of cells the laser has touched (not kUnknown), for reports.
+  // How many cells the laser has touched (not kUnknown), for reports and tests.
   std::size_t known_cells() const;
 
   const std::array<uint8_t, static_cast<std::size_t>(kMapSide) * kMapSide>& cells() const { return cells_; }

@@ -19,7 +19,7 @@ struct SlamParams {
   // times a second, and the map would follow the filter instead of holding it.
   float draw_every_m = 0.3f;
   float draw_every_rad = 0.2f;
-  // --- search (map_scan.hpp)
+  // --- search (scan_fit.hpp)
   float iterations = 200.0f;      // Monte Carlo candidates per scan
   float sigma_xy_m = 0.08f;       // first spread of the candidates around the best so far
   float sigma_theta_rad = 0.03f;
