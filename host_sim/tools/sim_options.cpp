@@ -19,7 +19,8 @@ std::string sim_usage() {
       "              10 Hz, 4 m); default utm30lx\n"
       "  --duration  simulated seconds (default 60)\n"
       "  --seed      random seed: same world + config + seed = same outputs (default 1)\n"
-      "  --out       output directory: metrics.json, trajectory_truth.tum, render.png, sim.log\n"
+      "  --out       output directory: metrics.json, trajectory_truth.tum, render.png, sim.log;\n"
+      "              with the compact SLAM (urg04lx) also map.pgm, map.yaml and slam_map.png\n"
       "  --mission   what flies the vehicle:";
   for (const MissionInfo& m : mission_table()) u += std::string("\n                ") + m.name + ": " + m.summary;
   u +=

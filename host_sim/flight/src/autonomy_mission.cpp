@@ -1,4 +1,5 @@
 #include "kestrel/flight/autonomy_mission.hpp"
+#include "kestrel/flight/slam_map_image.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "kestrel/estimation/nav_filter.hpp"
 #include "kestrel/params/param_file.hpp"
 #include "kestrel/slam/slam_params.hpp"
+#include "kestrel/output/pgm_map.hpp"
 #include "kestrel/output/plot.hpp"
 #include "kestrel/output/tum_writer.hpp"
 #include "kestrel/sim/flight_recorder.hpp"
@@ -432,6 +434,35 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
   for (const EstimateSample& s : samples_)
     if (tum.write(s.t_s, s.est_pos.x(), s.est_pos.y(), s.est_pos.z(), s.est_yaw) != Status::kOk) return Status::kIoError;
   if (tum.close() != Status::kOk) return Status::kIoError;
+  // The compact SLAM's map, when it ran (DESIGN.md's map.pgm + map.yaml), and as a picture:
+  // its grey levels with the estimated path (slam_map.png).
+  if (stack_ && stack_->slam().started()) {
+    const output::GridImage map = slam_map_image(stack_->slam().map());
+    if (map.width > 0 && output::write_map(dir + "/map", map) != Status::kOk) return Status::kIoError;
+#if defined(KESTREL_HAS_PNG)
+    if (map.width > 0) {
+      constexpr int kPx = 3;  // pixels per cell
+      output::Canvas c(map.width * kPx, map.height * kPx);
+      c.set_world_view(map.origin_x_m, map.origin_y_m, kPx / map.resolution_m);
+      const slam::SlamMap& m = stack_->slam().map();
+      for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+          // The cell under this pixel block's centre; rows run down the canvas as y goes up.
+          const double wx = map.origin_x_m + (x + 0.5) * map.resolution_m, wy = map.origin_y_m + (y + 0.5) * map.resolution_m;
+          const slam::SubPoint sp = m.to_sub(static_cast<float>(wx), static_cast<float>(wy));
+          const uint8_t v = m.at(sp.x >> slam::kSubBits, sp.y >> slam::kSubBits);
+          const int px = x * kPx, py = (map.height - 1 - y) * kPx;
+          c.rect(px, py, px + kPx - 1, py + kPx - 1, output::Rgb{v, v, v}, true);
+        }
+      }
+      for (std::size_t i = 1; i < samples_.size(); ++i)
+        c.world_line(samples_[i - 1].est_pos.x(), samples_[i - 1].est_pos.y(), samples_[i].est_pos.x(),
+                     samples_[i].est_pos.y(), output::colors::kOrange, 1);
+      c.scale_bar(10, c.height() - 20, 5.0, output::colors::kBlue);
+      if (output::write_png(dir + "/slam_map.png", c) != Status::kOk) return Status::kIoError;
+    }
+#endif
+  }
   if (options_.kind == mission::MissionKind::kExplore && recorder() != nullptr) {
     // The numbers behind coverage_vs_time.png, so a sweep can average runs on one plot
     // (kestrel-coverage-plot): one `t_s,coverage` row per sample, coverage as a fraction.
