@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "kestrel/flight/autonomy_mission.hpp"
+#include "temp_file.hpp"
 
 namespace kestrel::flight {
 namespace {
@@ -148,11 +149,7 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
 }
 
 TEST(FlightOptions, AnEkfFileIsCheckedAndKeptToLoadOverTheLasersDefaults) {
-  const std::string path = testing::TempDir() + "flight_options_test.ekf";
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  ASSERT_NE(f, nullptr);
-  std::fputs("pose_cov_scale = 2\n", f);
-  std::fclose(f);
+  const std::string path = test::write_temp_file("flight_options_test.ekf", "pose_cov_scale = 2\n");
   FlightOptions ok;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kHover, options({{"ekf", path.c_str()}}), ok), "");
   EXPECT_EQ(ok.ekf_file, path);  // start() loads it over autonomy::vehicle_ekf_params(laser)
@@ -176,22 +173,18 @@ TEST(FlightOptions, TheCompactSlamFollowsTheLaserUnlessAsked) {
   EXPECT_EQ(on.slam_on, std::optional<bool>(true));
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", "off"}}), off), "");
   EXPECT_EQ(off.slam_on, std::optional<bool>(false));
-  const std::string path = testing::TempDir() + "flight_options_test.slam";
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  ASSERT_NE(f, nullptr);
-  std::fputs("iterations = 50\nmin_gain_level = 9\n", f);
-  std::fclose(f);
+  const std::string path = test::write_temp_file("flight_options_test.slam", "iterations = 50\nmin_gain_level = 9\n");
   FlightOptions file;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", path.c_str()}}), file), "");
   EXPECT_EQ(file.slam_on, std::optional<bool>(true));
   EXPECT_EQ(file.stack.slam.iterations, 50.0f);
   EXPECT_EQ(file.stack.slam.min_gain_level, 9.0f);
-  f = std::fopen(path.c_str(), "w");
-  ASSERT_NE(f, nullptr);
-  std::fputs("min_points = 900\nmax_points = 100\n", f);
-  std::fclose(f);
+  const std::string bad_path = test::write_temp_file("flight_options_test_bad.slam", "min_points = 900\nmax_points = 100\n");
   FlightOptions bad;
-  EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", path.c_str()}}), bad), "");
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", bad_path.c_str()}}), bad),
+            bad_path + ":0: inconsistent SLAM parameters: need min_points <= max_points");
+  EXPECT_EQ(bad.stack.slam.min_points, slam::SlamParams{}.min_points);  // nothing taken from it
+  std::remove(bad_path.c_str());
   FlightOptions missing;
   EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", "/no/such/file"}}), missing), "");
   std::remove(path.c_str());

@@ -12,6 +12,7 @@
 #include "kestrel/sim/builtin_worlds.hpp"
 #include "kestrel/sim/mission_runner.hpp"
 #include "kestrel/sim/simulation.hpp"
+#include "temp_file.hpp"
 
 namespace kestrel::flight {
 namespace {
@@ -120,11 +121,7 @@ TEST(HoverClosedLoop, TheUrg04lxFliesWithTheCompactSlam) {
 // ekf=FILE is loaded over the laser's defaults when the mission starts: the file's key and
 // the laser's accelerometer model both reach the filter.
 TEST(HoverClosedLoop, AnEkfFileLoadsOverTheLasersDefaults) {
-  const std::string path = testing::TempDir() + "hover_closed_loop_test.ekf";
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  ASSERT_NE(file, nullptr);
-  std::fputs("pose_cov_scale = 2\n", file);
-  std::fclose(file);
+  const std::string path = test::write_temp_file("hover_closed_loop_test.ekf", "pose_cov_scale = 2\n");
   for (const bool utm : {false, true}) {
     if (utm && kShort) continue;  // the UTM-30LX is slow under qemu; the URG-04LX shows the order
     const sim::WorldParseResult world = sim::load_builtin_world("cluttered-lab");

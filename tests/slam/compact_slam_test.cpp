@@ -89,6 +89,24 @@ TEST(CompactSlam, TheFirstScanStartsTheMapAndTheWarmUpDrawsAtThePrior) {
   EXPECT_LT(res.level, 100.0f);  // three draws: the walls are well below unknown (128)
 }
 
+// Past the warm-up, a scan is drawn only once the sensor has moved draw_every_m or turned
+// draw_every_rad since the last scan drawn: a hover does not redraw its own error.
+TEST(CompactSlam, AScanIsDrawnOnlyAfterTheSensorHasMovedOrTurned) {
+  Rig r;
+  SlamParams p;
+  p.warmup_scans = 0;
+  ASSERT_EQ(r.slam->configure(p), Status::kOk);
+  const test::SegmentWorld w = test::slam_room();
+  const auto drawn = [&](const Pose2& at) {
+    return (r.slam->process(test::scan_points(w, test::LaserModel::urg04lx(), at), at).flags & slam_flag::kDrawn) != 0;
+  };
+  EXPECT_TRUE(drawn({0, 0, 0}));  // the first scan starts the map
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(drawn({0.01f * i, 0, 0.01f * i})) << i;
+  EXPECT_TRUE(drawn({0.35f, 0, 0}));      // moved
+  EXPECT_FALSE(drawn({0.40f, 0, 0.1f}));  // 5 cm and 0.1 rad on: not yet
+  EXPECT_TRUE(drawn({0.35f, 0, 0.25f}));  // turned
+}
+
 TEST(CompactSlam, CorrectionsHoldADriftingFilterOnTheMap) {
   Rig r;
   ASSERT_EQ(r.slam->configure({}), Status::kOk);

@@ -9,7 +9,6 @@
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/estimation/nav_filter.hpp"
-#include "kestrel/params/param_file.hpp"
 #include "kestrel/slam/slam_params.hpp"
 #include "kestrel/output/pgm_map.hpp"
 #include "kestrel/output/plot.hpp"
@@ -231,10 +230,8 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
         out.slam_on = value == "on";
       } else {
         params::ParamError err;
-        auto fields = slam::slam_param_fields(out.stack.slam);
-        if (params::load_params_file(value.c_str(), fields, err) != Status::kOk)
+        if (slam::load_slam_params(value.c_str(), out.stack.slam, err) != Status::kOk)
           return value + ":" + std::to_string(err.line) + ": " + err.message;
-        if (slam::validate(out.stack.slam) != Status::kOk) return value + ": min_points must not exceed max_points";
         out.slam_on = true;
       }
     } else if (key == "controller") {
@@ -376,8 +373,11 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("map_rebuilds", c.map_rebuilds);
   out.emplace_back("scans_lost", c.scans_lost);
   out.emplace_back("map_restarts", c.map_restarts);
-  out.emplace_back("slam_scans", c.slam_scans);
-  out.emplace_back("slam_corrections", c.slam_corrections);
+  // The compact SLAM's own counts (all zero when it is off): scans it matched or drew, and the
+  // corrections it handed to the filter (nav.corrections and nav.corrections_rejected say what
+  // the filter made of them).
+  out.emplace_back("slam_scans", stack_->slam().counters().scans);
+  out.emplace_back("slam_corrections", stack_->slam().counters().corrections);
   out.emplace_back("imu_silences", stack_->silences().imu);
   out.emplace_back("scan_silences", stack_->silences().scan);
   out.emplace_back("setpoints_sent", c.setpoints_sent);

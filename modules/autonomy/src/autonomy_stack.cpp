@@ -91,12 +91,10 @@ void AutonomyStack::background_step() {
   // A correction not yet taken holds the next scan back: the filter applies them in order.
   if (!slam_in_full_.load(std::memory_order_acquire) || slam_out_ready_.load(std::memory_order_acquire)) return;
   const slam::SlamResult r = slam_.process(slam_in_.points, slam_in_.prior);
-  ++counters_.slam_scans;
-  if (r.corrected()) {
+  if (r.corrected()) {  // counted by the SLAM (slam().counters()); the filter counts its refusals
     slam_out_ = {};
     slam_out_.stamp = slam_in_.stamp;
     slam_out_.pose = r.pose;
-    ++counters_.slam_corrections;
     slam_out_ready_.store(true, std::memory_order_release);
   }
   slam_in_full_.store(false, std::memory_order_release);

@@ -70,9 +70,7 @@ std::array<params::ParamField, kControllerParamCount> controller_param_fields(Co
 
 Status validate(const ControllerParams& p) {
   ControllerParams copy = p;
-  for (const params::ParamField& f : controller_param_fields(copy)) {
-    if (!(*f.value >= f.min && *f.value <= f.max)) return Status::kInvalidArgument;
-  }
+  if (params::check_ranges(controller_param_fields(copy)) != Status::kOk) return Status::kInvalidArgument;
   if (!(p.min_thrust < p.max_thrust)) return Status::kInvalidArgument;
   const float hover = p.model.hover_thrust();
   if (!(hover > p.min_thrust && hover < p.max_thrust)) return Status::kInvalidArgument;

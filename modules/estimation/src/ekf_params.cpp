@@ -31,10 +31,7 @@ std::array<params::ParamField, kEkfParamCount> ekf_param_fields(EkfParams& p) {
 
 Status validate(const EkfParams& p) {
   EkfParams copy = p;
-  for (const params::ParamField& f : ekf_param_fields(copy)) {
-    if (!(*f.value >= f.min && *f.value <= f.max)) return Status::kInvalidArgument;
-  }
-  return Status::kOk;
+  return params::check_ranges(ekf_param_fields(copy));
 }
 
 Status load_ekf_params(const char* path, EkfParams& out, params::ParamError& error) {

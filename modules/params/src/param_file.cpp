@@ -74,6 +74,13 @@ Status parse_params(std::string_view text, std::span<const ParamField> fields, P
   return Status::kOk;
 }
 
+Status check_ranges(std::span<const ParamField> fields) {
+  for (const ParamField& f : fields) {
+    if (!(*f.value >= f.min && *f.value <= f.max)) return Status::kInvalidArgument;
+  }
+  return Status::kOk;
+}
+
 Status load_params_file(const char* path, std::span<const ParamField> fields, ParamError& error) {
   error = ParamError{};
   std::FILE* f = std::fopen(path, "rb");

@@ -38,7 +38,7 @@ bool CompactSlam::within_limits(const Pose2& prior, const Pose2& pose) const {
 SlamResult CompactSlam::process(const scan_matching::ScanPoints& points, const Pose2& prior) {
   using namespace slam_flag;
   SlamResult r;
-  r.prior = r.pose = prior;
+  r.pose = prior;
   if (!prior.finite()) {
     r.flags = kNotFinite;
     return r;

@@ -1,5 +1,7 @@
 #include "kestrel/slam/slam_params.hpp"
 
+#include <cstdio>
+
 namespace kestrel::slam {
 
 std::array<params::ParamField, kSlamParamCount> slam_param_fields(SlamParams& p) {
@@ -28,10 +30,22 @@ std::array<params::ParamField, kSlamParamCount> slam_param_fields(SlamParams& p)
 
 Status validate(const SlamParams& p) {
   SlamParams copy = p;
-  for (const params::ParamField& f : slam_param_fields(copy)) {
-    if (!(*f.value >= f.min && *f.value <= f.max)) return Status::kInvalidArgument;
-  }
+  if (params::check_ranges(slam_param_fields(copy)) != Status::kOk) return Status::kInvalidArgument;
   if (p.min_points > p.max_points) return Status::kInvalidArgument;
+  return Status::kOk;
+}
+
+Status load_slam_params(const char* path, SlamParams& out, params::ParamError& error) {
+  SlamParams staged = out;
+  const auto fields = slam_param_fields(staged);
+  const Status s = params::load_params_file(path, fields, error);
+  if (!ok(s)) return s;
+  if (!ok(validate(staged))) {
+    error.line = 0;
+    std::snprintf(error.message, sizeof(error.message), "inconsistent SLAM parameters: need min_points <= max_points");
+    return Status::kInvalidArgument;
+  }
+  out = staged;
   return Status::kOk;
 }
 

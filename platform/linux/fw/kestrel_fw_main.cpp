@@ -264,6 +264,10 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u\n",
                link.frames, link.crc_errors, link.skipped_bytes, link.malformed);
   // The filter's counts: whether it refused input (and why) or drifted on good input.
+  // The compact SLAM's counts (zero when it is off), read after level 3's thread has joined.
+  const slam::SlamCounters& sc = stack->slam().counters();
+  std::fprintf(stderr, "kestrel-fw: slam %s, scans %u corrections %u\n", cfg.slam_enabled ? "on" : "off", sc.scans,
+               sc.corrections);
   std::fprintf(stderr, "kestrel-fw: filter");
   const estimation::NavFilterCounters& nav = stack->filter().counters();
   for (const estimation::NavFilterCounterField& f : estimation::kNavFilterCounterFields)

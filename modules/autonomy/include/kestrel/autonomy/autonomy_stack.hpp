@@ -65,8 +65,6 @@ struct StackCounters {
   uint32_t scans_lost = 0;           // matched nothing: the pose is the filter's prediction
   uint32_t map_restarts = 0;         // lost too long: the local map started again
   uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
-  uint32_t slam_scans = 0;           // scans the SLAM processed
-  uint32_t slam_corrections = 0;     // corrections it handed back (the filter may refuse some)
 };
 
 class AutonomyStack {

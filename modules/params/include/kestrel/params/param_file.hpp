@@ -7,6 +7,7 @@
 // API
 //   Status parse_params(text, fields, error)     text -> values, all-or-nothing
 //   Status load_params_file(path, fields, error) reads a file (<= kMaxParamFileBytes) and parses it
+//   Status check_ranges(fields)                  every value within its [min, max]
 //   Result<size_t> write_params(fields, header, buf, cap)  values -> text
 //   Status save_params_file(path, fields, header, error)
 //
@@ -41,6 +42,9 @@ struct ParamError {
 };
 
 Status parse_params(std::string_view text, std::span<const ParamField> fields, ParamError& error);
+// kOk when every field's value lies in its [min, max] (NaN does not): the range check a
+// module's validate() shares with the parser.
+Status check_ranges(std::span<const ParamField> fields);
 Status load_params_file(const char* path, std::span<const ParamField> fields, ParamError& error);
 
 // Writes every field as `# help [unit]` then `key = value` (9 significant digits, so a float

@@ -49,7 +49,6 @@ inline constexpr uint32_t kTooFar = 1u << 9;        // the correction exceeds it
 struct SlamResult {
   Pose2 pose;               // the correction when kCorrected; otherwise the prior (the scan
                             // is drawn at the best fit unless kTooFar)
-  Pose2 prior;
   float level = 0;          // the best fit's mean map value (0 wall .. 255 free)
   float prior_level = 0;    // the prior's
   uint16_t points = 0;      // returns used
@@ -57,13 +56,14 @@ struct SlamResult {
   bool corrected() const { return (flags & slam_flag::kCorrected) != 0; }
 };
 
+// Written by process() only (level 3); read them once it is idle, or at the end of a run.
 struct SlamCounters {
-  uint32_t scans = 0;
-  uint32_t corrections = 0;
-  uint32_t no_fit = 0;
+  uint32_t scans = 0;           // with enough points: started, warmed up or matched
+  uint32_t corrections = 0;     // handed back (kCorrected)
+  uint32_t no_fit = 0;          // matched, refused: kNoFit, kNoGain or kTooFar
   uint32_t no_gain = 0;
   uint32_t too_far = 0;
-  uint32_t too_few_points = 0;
+  uint32_t too_few_points = 0;  // neither matched nor drawn
 };
 
 class CompactSlam {

@@ -39,5 +39,8 @@ struct SlamParams {
 inline constexpr std::size_t kSlamParamCount = 19;
 std::array<params::ParamField, kSlamParamCount> slam_param_fields(SlamParams& p);
 Status validate(const SlamParams& p);
+// Reads a parameter file over `out` (keys absent keep their values); on any error, `out` is
+// unchanged and `error` names the line, or the inconsistency (min_points above max_points).
+Status load_slam_params(const char* path, SlamParams& out, params::ParamError& error);
 
 }  // namespace kestrel::slam
