@@ -399,7 +399,7 @@ TEST(AutonomyStack, QueuedScansImuAndAltimeterSamplesAreConsumedMatchedAndCounte
   EXPECT_EQ(c.imu_errors, 0u);
   EXPECT_EQ(c.altitude_samples, 21u);
   EXPECT_EQ(c.device_errors, 0u);
-  EXPECT_GE(c.map_rebuilds, 1u);
+  EXPECT_GE(r.stack->map_rebuilds(), 1u);
   EXPECT_EQ(r.laser.scans.waiting() + r.imu.samples.waiting() + r.altimeter.samples.waiting(), 0u);
   EXPECT_EQ(r.laser.scans.dropped + r.imu.samples.dropped + r.altimeter.samples.dropped, 0u);
   // Every scan reached the filter; the estimate sits at home, current to the newest sample.

@@ -370,7 +370,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("scans_matched", c.scans_matched);
   out.emplace_back("scans_rejected", c.scans_rejected);
   out.emplace_back("poses_gated", c.poses_gated);
-  out.emplace_back("map_rebuilds", c.map_rebuilds);
+  out.emplace_back("map_rebuilds", stack_->map_rebuilds());
   out.emplace_back("scans_lost", c.scans_lost);
   out.emplace_back("map_restarts", c.map_restarts);
   // The compact SLAM's own counts (all zero when it is off): scans it matched or drew, and the

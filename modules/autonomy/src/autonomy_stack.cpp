@@ -87,7 +87,7 @@ std::size_t AutonomyStack::poll() {
 }
 
 void AutonomyStack::background_step() {
-  if (matcher_.local_map().rebuild() == Status::kOk) ++counters_.map_rebuilds;
+  if (matcher_.local_map().rebuild() == Status::kOk) map_rebuilds_.fetch_add(1, std::memory_order_relaxed);
   // A correction not yet taken holds the next scan back: the filter applies them in order.
   if (!slam_in_full_.load(std::memory_order_acquire) || slam_out_ready_.load(std::memory_order_acquire)) return;
   const slam::SlamResult r = slam_.process(slam_in_.points, slam_in_.prior);

@@ -48,7 +48,8 @@ struct Devices {
   hal::FlightController& autopilot;
 };
 
-// What the loop did, for metrics.json and telemetry.
+// What the loop did, for metrics.json and telemetry. Level 3's counts are kept apart
+// (map_rebuilds(), slam().counters()): another thread writes them on a board.
 struct StackCounters {
   uint32_t scans = 0;
   uint32_t scans_matched = 0;
@@ -61,7 +62,6 @@ struct StackCounters {
   uint32_t guidance_rejected = 0;    // flight-home set-points the approach limiter could not bound (zeroed)
   uint32_t setpoints_sent = 0;
   uint32_t autopilot_errors = 0;
-  uint32_t map_rebuilds = 0;
   uint32_t scans_lost = 0;           // matched nothing: the pose is the filter's prediction
   uint32_t map_restarts = 0;         // lost too long: the local map started again
   uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
@@ -99,6 +99,8 @@ class AutonomyStack {
   const slam::CompactSlam& slam() const { return slam_; }
   const Scheduler& scheduler() const { return scheduler_; }
   const StackCounters& counters() const { return counters_; }
+  // Local-map rebuilds done by background_step(): level 3's count, readable from the loop's thread.
+  uint32_t map_rebuilds() const { return map_rebuilds_.load(std::memory_order_relaxed); }
   // How often the IMU and the laser fell silent for longer than their timeouts.
   const SilenceCounters& silences() const { return watchdog_.counters(); }
   bool finished() const { return mission_.finished(); }
@@ -166,7 +168,8 @@ class AutonomyStack {
   bool armed_ = false;
   bool blind_descending_ = false;  // the failsafe's blind descent, since blind_descent_since_
   TimeUs blind_descent_since_;
-  StackCounters counters_;
+  StackCounters counters_;        // written by the loop (levels 1-2) only
+  std::atomic<uint32_t> map_rebuilds_{0};  // written by background_step() only
 };
 
 }  // namespace kestrel::autonomy
