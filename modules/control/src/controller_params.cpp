@@ -1,7 +1,6 @@
 #include "kestrel/control/controller_params.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "kestrel/control/lqr.hpp"
 
@@ -78,18 +77,9 @@ Status validate(const ControllerParams& p) {
 }
 
 Status load_controller_params(const char* path, ControllerParams& out, params::ParamError& error) {
-  ControllerParams staged = out;
-  const auto fields = controller_param_fields(staged);
-  const Status s = params::load_params_file(path, fields, error);
-  if (!ok(s)) return s;
-  if (!ok(validate(staged))) {
-    error.line = 0;
-    std::snprintf(error.message, sizeof(error.message),
-                  "inconsistent controller parameters: need min_thrust < hover thrust (-b_thrust/k_thrust) < max_thrust");
-    return Status::kInvalidArgument;
-  }
-  out = staged;
-  return Status::kOk;
+  return params::load_params_struct(
+      path, out, controller_param_fields, [](const ControllerParams& p) { return validate(p); },
+      "inconsistent controller parameters: need min_thrust < hover thrust (-b_thrust/k_thrust) < max_thrust", error);
 }
 
 }  // namespace kestrel::control

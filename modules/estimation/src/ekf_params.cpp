@@ -35,12 +35,9 @@ Status validate(const EkfParams& p) {
 }
 
 Status load_ekf_params(const char* path, EkfParams& out, params::ParamError& error) {
-  EkfParams staged = out;
-  const auto fields = ekf_param_fields(staged);
-  const Status s = params::load_params_file(path, fields, error);
-  if (!ok(s)) return s;
-  out = staged;
-  return Status::kOk;
+  // Every EKF parameter stands alone: validate() is the range check the file already passed.
+  return params::load_params_struct(path, out, ekf_param_fields, [](const EkfParams& p) { return validate(p); },
+                                    "EKF parameters out of range", error);
 }
 
 }  // namespace kestrel::estimation

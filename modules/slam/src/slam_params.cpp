@@ -1,6 +1,5 @@
 #include "kestrel/slam/slam_params.hpp"
 
-#include <cstdio>
 
 namespace kestrel::slam {
 
@@ -36,17 +35,8 @@ Status validate(const SlamParams& p) {
 }
 
 Status load_slam_params(const char* path, SlamParams& out, params::ParamError& error) {
-  SlamParams staged = out;
-  const auto fields = slam_param_fields(staged);
-  const Status s = params::load_params_file(path, fields, error);
-  if (!ok(s)) return s;
-  if (!ok(validate(staged))) {
-    error.line = 0;
-    std::snprintf(error.message, sizeof(error.message), "inconsistent SLAM parameters: need min_points <= max_points");
-    return Status::kInvalidArgument;
-  }
-  out = staged;
-  return Status::kOk;
+  return params::load_params_struct(path, out, slam_param_fields, [](const SlamParams& p) { return validate(p); },
+                                    "inconsistent SLAM parameters: need min_points <= max_points", error);
 }
 
 }  // namespace kestrel::slam

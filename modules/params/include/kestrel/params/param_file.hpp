@@ -7,6 +7,8 @@
 // API
 //   Status parse_params(text, fields, error)     text -> values, all-or-nothing
 //   Status load_params_file(path, fields, error) reads a file (<= kMaxParamFileBytes) and parses it
+//   Status load_params_struct(path, out, fields_of, validate, inconsistent, error)  the same into a
+//                                                whole Params struct, checked as one
 //   Status check_ranges(fields)                  every value within its [min, max]
 //   Result<size_t> write_params(fields, header, buf, cap)  values -> text
 //   Status save_params_file(path, fields, header, error)
@@ -17,6 +19,7 @@
 //   (default) values. On any error no value is changed: fields are written only after the
 //   whole text has been checked.
 #include <cstddef>
+#include <cstdio>
 #include <span>
 #include <string_view>
 
@@ -46,6 +49,25 @@ Status parse_params(std::string_view text, std::span<const ParamField> fields, P
 // module's validate() shares with the parser.
 Status check_ranges(std::span<const ParamField> fields);
 Status load_params_file(const char* path, std::span<const ParamField> fields, ParamError& error);
+
+// Loads a file over a copy of `out` (fields_of(copy) gives its ParamField table), checks the
+// copy with validate(copy), and only then commits it: a file is taken all or nothing, also
+// when each value is in range but the set is inconsistent; `inconsistent` is then the error
+// message, which says what validate() needs beyond the ranges.
+template <typename Params, typename FieldsOf, typename Validate>
+Status load_params_struct(const char* path, Params& out, FieldsOf fields_of, Validate validate,
+                          const char* inconsistent, ParamError& error) {
+  Params staged = out;
+  const auto fields = fields_of(staged);
+  if (const Status s = load_params_file(path, fields, error); !ok(s)) return s;
+  if (!ok(validate(staged))) {
+    error.line = 0;
+    std::snprintf(error.message, sizeof(error.message), "%s", inconsistent);
+    return Status::kInvalidArgument;
+  }
+  out = staged;
+  return Status::kOk;
+}
 
 // Writes every field as `# help [unit]` then `key = value` (9 significant digits, so a float
 // survives the round trip). Returns the number of characters written (no terminating zero
