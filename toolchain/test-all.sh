@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The README's test command: installs what is missing, then configures, builds and runs the
-# tests of all four presets (host, host-asan, and the two ARM targets under qemu-arm).
+# tests of all five presets (host, host-asan, host-tsan: the threaded tests only, and the two
+# ARM targets under qemu-arm).
 # Usage (as root on Debian 12): bash toolchain/test-all.sh [preset ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,7 +9,7 @@ cd "$(dirname "$0")/.."
 bash toolchain/install-deps.sh
 
 presets=("$@")
-[ ${#presets[@]} -gt 0 ] || presets=(host host-asan overo verdex)
+[ ${#presets[@]} -gt 0 ] || presets=(host host-asan host-tsan overo verdex)
 jobs=$(nproc)
 
 declare -A result

@@ -3,10 +3,12 @@
 #include <atomic>
 #include <cstddef>
 
-#if defined(__SANITIZE_ADDRESS__)
+// A sanitizer that owns malloc (AddressSanitizer, ThreadSanitizer) must keep it: an interposed
+// malloc of ours would run, instrumented, before the sanitizer's runtime has started.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define KESTREL_ALLOC_GUARD_SANITIZER 1
 #elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
 #define KESTREL_ALLOC_GUARD_SANITIZER 1
 #endif
 #endif
@@ -32,8 +34,8 @@ bool active() { return true; }
 }  // namespace kestrel::alloc_guard
 
 #if defined(KESTREL_ALLOC_GUARD_SANITIZER)
-// AddressSanitizer owns malloc and calls this weak hook (a no-op unless a program defines
-// it) on every allocation it serves.
+// The sanitizer owns malloc and calls this weak hook (a no-op unless a program defines it) on
+// every allocation it serves.
 extern "C" void __sanitizer_malloc_hook(const volatile void* /*ptr*/, size_t /*size*/) {
   kestrel::alloc_guard::note_allocation();
 }
