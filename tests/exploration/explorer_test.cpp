@@ -1,4 +1,4 @@
-// The three explorers behind one interface: Algorithm 1's blending (equations 1, 5, 6), the
+// The four explorers behind one interface: Algorithm 1's blending (equations 1, 5, 6), the
 // limits of section V, the defined hold on every bad input, and no heap in the guidance step.
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/core/angle.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
+#include "kestrel/exploration/frontier_explorer.hpp"
 #include "kestrel/exploration/srt_explorer.hpp"
 #include "kestrel/exploration/wall_follow_explorer.hpp"
 #include "synthetic_world.hpp"
@@ -33,6 +34,8 @@ TEST(Explorer, KindsParseAndPrint) {
   EXPECT_EQ(parse_explorer_kind("blend").value(), ExplorerKind::kBlend);
   EXPECT_EQ(parse_explorer_kind("wallfollow").value(), ExplorerKind::kWallFollow);
   EXPECT_EQ(parse_explorer_kind("srt").value(), ExplorerKind::kSrt);
+  EXPECT_EQ(parse_explorer_kind("frontier").value(), ExplorerKind::kFrontier);
+  EXPECT_STREQ(to_string(ExplorerKind::kFrontier), "frontier");
   EXPECT_EQ(parse_explorer_kind("Blend").status(), Status::kInvalidArgument);
   EXPECT_EQ(parse_explorer_kind(nullptr).status(), Status::kInvalidArgument);
   EXPECT_STREQ(to_string(ExplorerKind::kWallFollow), "wallfollow");
@@ -357,7 +360,10 @@ void never_allocates(Explorer* ex) {
   uint64_t allocations = 0;
   {
     alloc_guard::Scope guard;
-    for (std::size_t k = 0; k < scans.size(); ++k) (void)ex->step(navs[k], scans[k], out);
+    for (std::size_t k = 0; k < scans.size(); ++k) {
+      (void)ex->step(navs[k], scans[k], out);
+      ex->background_step();  // level 3 (the frontier explorer's), in lockstep
+    }
     allocations = guard.allocations();
   }
   EXPECT_EQ(allocations, 0u);
@@ -463,6 +469,18 @@ TEST(WallFollowExplorer, GuidanceStepNeverAllocates) {
 }
 TEST(SrtExplorer, GuidanceStepNeverAllocates) {
   never_allocates(std::make_unique<SrtExplorer>().get());
+}
+TEST(FrontierExplorer, BoundsAVelocitySetpointFromElsewhere) {
+  bounds_a_velocity_setpoint_from_elsewhere(std::make_unique<FrontierExplorer>().get());
+}
+TEST(FrontierExplorer, HoldsOnBadInput) {
+  holds_on_bad_input(std::make_unique<FrontierExplorer>().get());
+}
+TEST(FrontierExplorer, OddFiniteInputsGiveFiniteBoundedSetpoints) {
+  odd_finite_inputs_give_finite_bounded_setpoints(std::make_unique<FrontierExplorer>().get());
+}
+TEST(FrontierExplorer, GuidanceStepNeverAllocates) {
+  never_allocates(std::make_unique<FrontierExplorer>().get());
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// A kinematic closed loop for the three explorers: a point vehicle that does exactly what it is
+// A kinematic closed loop for the four explorers: a point vehicle that does exactly what it is
 // told (velocity commands integrated, position set-points tracked by a saturated proportional
 // law, heading commands obeyed at once) flies through a synthetic building ray-cast in this
 // file, with a URG-04LX at 10 Hz and perfect navigation. Paper 002's claims, checked:
@@ -6,7 +6,8 @@
 //   - wall following alone tracks the outer walls and leaves the inner room unexplored
 //     (section I-B);
 //   - SRT-Star alone explores too (it is a complete frontier method), with waypoints sent
-//     straight as position set-points.
+//     straight as position set-points;
+//   - paper 003's grid frontier explorer explores all of it and says when it is done.
 // The full closed loop with vehicle dynamics, EKF and controller in the simulator comes with
 // kestrel-sim --mission explore; this test isolates the guidance.
 #include <gtest/gtest.h>
@@ -21,6 +22,7 @@
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
+#include "kestrel/exploration/frontier_explorer.hpp"
 #include "kestrel/exploration/srt_explorer.hpp"
 #include "kestrel/exploration/wall_follow_explorer.hpp"
 #include "synthetic_world.hpp"
@@ -142,6 +144,7 @@ FlightLog fly(Explorer& ex, double duration_s, uint32_t seed, int stride) {
     {
       alloc_guard::Scope guard;
       EXPECT_EQ(ex.step(nav, scan, out), Status::kOk);
+      ex.background_step();  // level 3 in lockstep, as kestrel-sim runs it
       log.allocations += guard.allocations();
     }
     double vx = out.velocity_mps.x(), vy = out.velocity_mps.y();
@@ -267,6 +270,24 @@ TEST(KinematicClosedLoop, SrtAloneExploresWithPositionSetpoints) {
   }
   EXPECT_LE(touched, 1u);
   EXPECT_GE(explored, sc.successes_needed(7));
+}
+
+// The grid frontier explorer draws nothing at random: one flight says what it does. It flies
+// to the nearest frontier by path cost until none is left, through the 1.2 m gap and the inner
+// room's door, and then reports the building explored: at 258 s on the host, so every target
+// flies 300 s.
+TEST(KinematicClosedLoop, FrontierExplorerExploresEverythingAndFinishes) {
+  const Scale sc = scale();
+  auto ex = std::make_unique<FrontierExplorer>();
+  const FlightLog log = fly(*ex, 300.0, 1, sc.coverage_beam_stride);
+  EXPECT_EQ(log.collisions, 0);
+  EXPECT_GE(log.min_clearance_m, 0.3);
+  EXPECT_EQ(log.allocations, 0u);
+  EXPECT_GE(log.t_inner_s, 0);
+  EXPECT_GE(log.inner_coverage, 0.95);
+  EXPECT_GE(log.coverage, 0.95);
+  EXPECT_GE(log.t_finished_s, 0);
+  EXPECT_GT(ex->counters().goals, 3u);
 }
 
 }  // namespace

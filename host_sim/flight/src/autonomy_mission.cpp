@@ -61,6 +61,33 @@ void draw_srt_tree(const exploration::SrtStarPlanner& planner, output::Canvas& c
   if (planner.has_waypoint()) c.world_circle(planner.waypoint().x, planner.waypoint().y, 6, output::colors::kPurple, false);
 }
 
+// The grid frontier explorer (paper 003 Figure 7): its occupied cells, the frontier cells of
+// its last plan, the path flown and its goal, and the blacklisted goals.
+void draw_frontier_state(const exploration::FrontierExplorer& f, output::Canvas& c) {
+  const planning::OccupancyGrid& g = f.grid();
+  const planning::CellBox box = g.drawn();
+  const float half = 0.5f * g.geometry().cell_m;
+  for (int y = box.y0; y <= box.y1; ++y) {
+    for (int x = box.x0; x <= box.x1; ++x) {
+      const bool wall = planning::occupancy::is_occupied(g.at(x, y));
+      const bool frontier = f.frontier_cells().was_frontier(x, y);
+      if (!wall && !frontier) continue;
+      const Point2 p = g.geometry().centre_of({static_cast<int16_t>(x), static_cast<int16_t>(y)});
+      c.rect(c.wx(p.x - half), c.wy(p.y + half), c.wx(p.x + half), c.wy(p.y - half),
+             wall ? output::Rgb{90, 90, 90} : output::colors::kPurple, true);
+    }
+  }
+  const exploration::FrontierPlan& plan = f.plan_in_flight();
+  for (std::size_t i = 1; i < plan.path.size(); ++i)
+    c.world_line(plan.path[i - 1].x, plan.path[i - 1].y, plan.path[i].x, plan.path[i].y, output::colors::kGreen, 2);
+  if (plan.has_goal) c.world_circle(plan.frontier.x, plan.frontier.y, 6, output::colors::kPurple, false);
+  for (const Point2& p : f.blacklist()) {
+    const int x = c.wx(p.x), y = c.wy(p.y);
+    c.line(x - 4, y - 4, x + 4, y + 4, output::colors::kRed, 2);
+    c.line(x - 4, y + 4, x + 4, y - 4, output::colors::kRed, 2);
+  }
+}
+
 bool parse_double(const std::string& s, double& out) {
   char* end = nullptr;
   out = std::strtod(s.c_str(), &end);
@@ -158,7 +185,7 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       if (std::string e = load_waypoints(value, out.stack); !e.empty()) return e;
     } else if (key == "explorer" && kind == mission::MissionKind::kExplore) {
       const Result<exploration::ExplorerKind> k = exploration::parse_explorer_kind(value.c_str());
-      if (!k.ok()) return "explorer: unknown explorer '" + value + "' (blend, wallfollow or srt)";
+      if (!k.ok()) return "explorer: unknown explorer '" + value + "' (blend, wallfollow, srt or frontier)";
       out.stack.explorer_kind = k.value();
     } else if (key == "hover_s" && kind == mission::MissionKind::kHover) {
       if (!parse_double(value, d) || d < 0) return "hover_s: '" + value + "' is not a non-negative number";
@@ -416,6 +443,18 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
       out.emplace_back("srt_steer_pauses", e->planner()->steer_pauses());
       out.emplace_back("srt_look_backs", e->planner()->look_backs());
     }
+    if (e->kind() == exploration::ExplorerKind::kFrontier) {
+      const auto& f = static_cast<const exploration::FrontierExplorer&>(*e);
+      const exploration::FrontierCounters k = f.counters();
+      const std::pair<const char*, uint32_t> rows[] = {
+          {"scans_offered", k.scans_offered}, {"scans_dropped", k.scans_dropped}, {"scans_drawn", k.scans_drawn},
+          {"draw_errors", k.draw_errors},     {"plans", k.plans},                 {"plans_dropped", k.plans_dropped},
+          {"plans_taken", k.plans_taken},     {"search_failures", k.search_failures}, {"relaxed_plans", k.relaxed_plans},
+          {"goals", k.goals},
+          {"arrivals", k.arrivals},           {"blacklisted", k.blacklisted},     {"stuck", k.stuck},
+          {"peak_open", k.peak_open}};
+      for (const auto& [name, v] : rows) out.emplace_back(std::string("frontier.") + name, v);
+    }
   }
   const Scheduler& s = stack_->scheduler();
   for (std::size_t i = 0; i < s.task_count(); ++i) {
@@ -522,7 +561,14 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
 
 std::vector<sim::Mission::LegendRow> AutonomyMission::legend() const {
   std::vector<LegendRow> rows = {{"ESTIMATED PATH", output::colors::kOrange}};
-  if (options_.kind == mission::MissionKind::kExplore) {
+  const bool grid = stack_ && stack_->explorer() && stack_->explorer()->kind() == exploration::ExplorerKind::kFrontier;
+  if (options_.kind == mission::MissionKind::kExplore && grid) {
+    rows.push_back({"GRID: WALL CELLS", output::Rgb{90, 90, 90}});
+    rows.push_back({"PATH TO THE FRONTIER", output::colors::kGreen});
+    rows.push_back({"FRONTIER CELLS / GOAL", output::colors::kPurple});
+    rows.push_back({"BLACKLISTED GOAL", output::colors::kRed});
+    rows.push_back({"WAY HOME (TRAIL)", output::colors::kGrey});
+  } else if (options_.kind == mission::MissionKind::kExplore) {
     rows.push_back({"SRT TREE", output::colors::kGreen});
     rows.push_back({"FRONTIER / WAYPOINT", output::colors::kPurple});
     rows.push_back({"WAY HOME (TRAIL)", output::colors::kGrey});
@@ -538,6 +584,8 @@ void AutonomyMission::draw(output::Canvas& c) const {
   const exploration::Explorer* e = stack_ ? stack_->explorer() : nullptr;
   const exploration::SrtStarPlanner* planner = e != nullptr ? e->planner() : nullptr;
   if (planner != nullptr) draw_srt_tree(*planner, c);
+  if (e != nullptr && e->kind() == exploration::ExplorerKind::kFrontier)
+    draw_frontier_state(static_cast<const exploration::FrontierExplorer&>(*e), c);
   if (stack_) {
     const mission::BreadcrumbTrail& trail = stack_->mission().trail();
     for (std::size_t i = 0; i < trail.size(); ++i)

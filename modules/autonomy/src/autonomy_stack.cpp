@@ -4,7 +4,8 @@ namespace kestrel::autonomy {
 
 // DESIGN.md: the Verdex's firmware within 16 MiB in all. The stack is allocated at start-up, so
 // the budget tool (static RAM) does not see it: 12.4 MiB with the 20 m local map and the compact
-// SLAM's 1 MiB map, and 1 MiB kept for the rest of the firmware, which is tens of KiB.
+// SLAM's 1 MiB map, 1.1 MiB for the frontier explorer's grid, and 1 MiB kept for the rest of
+// the firmware, which is tens of KiB.
 static_assert(sizeof(AutonomyStack) < 15u * 1024u * 1024u, "AutonomyStack outgrows the Verdex's 16 MiB");
 
 AutonomyStack::AutonomyStack(const Devices& devices, const TimeSource& exec_clock)
@@ -52,6 +53,7 @@ Status AutonomyStack::configure(const StackConfig& c) {
       case exploration::ExplorerKind::kBlend: explorer_ = &blend_; break;
       case exploration::ExplorerKind::kWallFollow: explorer_ = &wallfollow_; break;
       case exploration::ExplorerKind::kSrt: explorer_ = &srt_; break;
+      case exploration::ExplorerKind::kFrontier: explorer_ = &frontier_; break;
     }
     exploration::Params ep = c.explorer;
     ep.guidance.altitude_m = c.mission.takeoff_altitude_m;
@@ -88,6 +90,8 @@ std::size_t AutonomyStack::poll() {
 
 void AutonomyStack::background_step() {
   if (matcher_.local_map().rebuild() == Status::kOk) map_rebuilds_.fetch_add(1, std::memory_order_relaxed);
+  // explorer_ is set by configure(), before the loop and this thread start.
+  if (explorer_ != nullptr) explorer_->background_step();
   // A correction not yet taken holds the next scan back: the filter applies them in order.
   if (!slam_in_full_.load(std::memory_order_acquire) || slam_out_ready_.load(std::memory_order_acquire)) return;
   const slam::SlamResult r = slam_.process(slam_in_.points, slam_in_.prior);

@@ -22,13 +22,15 @@ const char* to_string(ExplorerKind k) {
       return "wallfollow";
     case ExplorerKind::kSrt:
       return "srt";
+    case ExplorerKind::kFrontier:
+      return "frontier";
   }
   return "unknown";
 }
 
 Result<ExplorerKind> parse_explorer_kind(const char* name) {
   if (name == nullptr) return Status::kInvalidArgument;
-  for (ExplorerKind k : {ExplorerKind::kBlend, ExplorerKind::kWallFollow, ExplorerKind::kSrt})
+  for (ExplorerKind k : kExplorerKinds)
     if (std::strcmp(name, to_string(k)) == 0) return k;
   return Status::kInvalidArgument;
 }

@@ -67,9 +67,26 @@ Status Params::validate() const {
   // A waypoint is drawn clearance_m from the returns: the limiter must let the vehicle get there.
   const bool approach_ok = approach.validate() == Status::kOk &&
                            (!approach.enabled || approach.stop_distance_m <= srt.clearance_m);
-  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach_ok
+  // The same for the frontier explorer's paths: no cell nearer a wall than the limiter allows.
+  const bool frontier_ok = frontier.validate() == Status::kOk &&
+                           (!approach.enabled || approach.stop_distance_m <= frontier.lethal_m);
+  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach_ok && frontier_ok
              ? Status::kOk
              : Status::kInvalidArgument;
+}
+
+Status FrontierParams::validate() const {
+  const bool ok = cell_m >= 0.02f && cell_m <= 1.0f && positive(reach_m) && reach_m <= 60.0f && positive(lethal_m) &&
+                  non_negative(relaxed_lethal_m) && relaxed_lethal_m <= lethal_m && soft_m >= lethal_m && soft_m <= 10.0f && soft_penalty <= 60 && non_negative(min_frontier_m) &&
+                  non_negative(goal_inset_m) && goal_inset_m <= 5.0f && positive(lookahead_m) && lookahead_m <= 10.0f &&
+                  non_negative(field_weight) && field_weight <= 10.0f && non_negative(draw_period_s) &&
+                  draw_period_s <= 10.0f && positive(replan_period_s) && replan_period_s <= 60.0f &&
+                  positive(progress_m) && positive(patience_s) && positive(goal_time_limit_s) &&
+                  non_negative(blacklist_radius_m) && non_negative(goal_match_m) && positive(stuck_radius_m) && positive(stuck_time_s) &&
+                  non_negative(switch_margin_m) &&
+                  empty_plans_to_finish >= 1;
+  // Distances become chamfer units of a third of a cell, at most 255.
+  return ok && soft_m / cell_m * 3.0f < 255.0f ? Status::kOk : Status::kInvalidArgument;
 }
 
 Status ApproachParams::validate() const {

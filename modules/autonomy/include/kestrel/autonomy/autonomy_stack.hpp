@@ -25,6 +25,7 @@
 #include "kestrel/core/scheduler.hpp"
 #include "kestrel/estimation/nav_filter.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
+#include "kestrel/exploration/frontier_explorer.hpp"
 #include "kestrel/exploration/srt_explorer.hpp"
 #include "kestrel/exploration/wall_follow_explorer.hpp"
 #include "kestrel/hal/altimeter.hpp"
@@ -82,8 +83,9 @@ class AutonomyStack {
   // Runs the tasks that are due; returns how many ran.
   std::size_t poll();
   TimeUs next_release() const { return scheduler_.next_release(); }
-  // Level 3: rebuilds the scan matcher's local map if a key scan is waiting, and runs the
-  // SLAM on the scan waiting for it, if any.
+  // Level 3: rebuilds the scan matcher's local map if a key scan is waiting, runs the SLAM on
+  // the scan waiting for it, if any, and the explorer's background work (the frontier
+  // explorer's grid and planner).
   void background_step();
 
   const NavState& nav() const { return nav_; }
@@ -132,6 +134,7 @@ class AutonomyStack {
   exploration::BlendExplorer blend_;
   exploration::WallFollowExplorer wallfollow_;
   exploration::SrtExplorer srt_;
+  exploration::FrontierExplorer frontier_;
   exploration::Explorer* explorer_ = nullptr;
   slam::SlamMap slam_map_;
   slam::CompactSlam slam_{slam_map_};

@@ -1,12 +1,15 @@
 #pragma once
-// One small interface over the three exploration strategies the closed-loop mission compares
+// One small interface over the four exploration strategies the closed-loop mission compares
 // side by side on the same worlds and seeds:
 //   blend      paper 002 Algorithm 1: wall-following field + SRT-Star frontier velocity,
 //              heading towards the waypoint (GuidanceSetpoint kVelocity);
 //   wallfollow the wall-following field alone (section III), the baseline paper 002 improves
 //              on (kVelocity);
 //   srt        SRT-Star alone, its waypoints sent straight to the controller as position
-//              set-points, as in Freda and Oriolo's original (kPosition).
+//              set-points, as in Freda and Oriolo's original (kPosition);
+//   frontier   paper 003's grid frontier exploration with a Dijkstra path to the nearest
+//              frontier, flown as the blend flies (kVelocity; its grid and planner run at
+//              level 3, background_step()).
 // An explorer is configured once at start-up and then stepped once per laser scan with the
 // newest navigation state; it never allocates after configuration.
 #include <Eigen/Core>
@@ -23,9 +26,11 @@
 
 namespace kestrel::exploration {
 
-enum class ExplorerKind : uint8_t { kBlend, kWallFollow, kSrt };
+enum class ExplorerKind : uint8_t { kBlend, kWallFollow, kSrt, kFrontier };
+inline constexpr ExplorerKind kExplorerKinds[] = {ExplorerKind::kBlend, ExplorerKind::kWallFollow, ExplorerKind::kSrt,
+                                                ExplorerKind::kFrontier};
 const char* to_string(ExplorerKind k);
-// "blend", "wallfollow" or "srt"; kInvalidArgument otherwise.
+// "blend", "wallfollow", "srt" or "frontier"; kInvalidArgument otherwise.
 Result<ExplorerKind> parse_explorer_kind(const char* name);
 
 // What the last step did, for telemetry, tests and render.png.
@@ -65,9 +70,15 @@ class Explorer {
   // unconfigured explorer, a scan of another geometry or a non-finite heading, and then the
   // horizontal velocity is zeroed: unbounded it could not be trusted near a wall.
   virtual Status bound_velocity(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& setpoint) = 0;
-  // Nothing left to explore (the SRT root owns no frontier); never for wallfollow.
+  // Level 3 (paper 000 Figure 4): the explorer's background work, if it has any (the frontier
+  // explorer's grid and planner). Called from one background thread, or in lockstep after each
+  // poll in the simulator; step() never waits for it.
+  virtual void background_step() {}
+  // Nothing left to explore (the SRT root owns no frontier; no accessible grid frontier);
+  // never for wallfollow.
   virtual bool finished() const = 0;
-  // The SRT-Star planner (tree, frontiers, waypoint) for introspection; nullptr for wallfollow.
+  // The SRT-Star planner (tree, frontiers, waypoint) for introspection; nullptr for wallfollow
+  // and frontier.
   virtual const SrtStarPlanner* planner() const = 0;
   virtual const ExplorerStatus& status() const = 0;
 

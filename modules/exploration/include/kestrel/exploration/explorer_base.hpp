@@ -1,5 +1,5 @@
 #pragma once
-// What the three explorers share: input checks with a defined hold for every bad input, the
+// What the four explorers share: input checks with a defined hold for every bad input, the
 // wall-following field, the yaw-rate and speed limits of paper 002 section V, the approach
 // limiter on every velocity command, and the status.
 // A derived explorer only writes its strategy in plan().
@@ -26,6 +26,7 @@ class ExplorerBase : public Explorer {
   virtual Status plan(const Pose2& pose, const LaserScan& scan, TimeUs now, GuidanceSetpoint& out,
                       float& heading_target) = 0;
   virtual Status configure_strategy() { return Status::kOk; }
+  bool configured() const { return configured_; }
   virtual void reset_strategy() {}
 
   // The field of equations 2-4 in the world frame, recorded in the status.

@@ -141,11 +141,57 @@ struct ApproachParams {
   Status validate() const;
 };
 
+// The grid frontier explorer (frontier_explorer.hpp; paper 003 section 3.2, after Yamauchi): an
+// occupancy grid drawn from the laser at level 3, the nearest accessible frontier by path
+// cost, a Dijkstra path to it, flown as the blend flies its waypoints.
+struct FrontierParams {
+  float cell_m = 0.12f;          // grid cell: 512 of them span 61 m around home
+  float reach_m = 4.0f;          // rays draw up to here: the URG-04LX's reach, so that with the
+                                 // UTM-30LX too a room counts as explored once flown into
+  float lethal_m = 0.40f;        // the planner enters no cell nearer an obstacle: at least the
+                                 // approach limiter's stop distance (checked), which would hold
+                                 // the vehicle off a narrower gap (gt-building's 0.95 m gap
+                                 // keeps a cell or two)
+  float relaxed_lethal_m = 0.25f;  // with no frontier accessible, the search is run again with
+                                   // this: walls drawn twice a few decimetres apart (the
+                                   // estimate had drifted) narrow a door on the grid that is
+                                   // wide enough in truth; the limiter and the field fly the
+                                   // real one (0: no second search)
+  float soft_m = 0.90f;          // between lethal_m and this a step costs more, up to
+  uint8_t soft_penalty = 30;     //   this much at lethal_m (a straight step costs 10): paths
+                                 //   keep to the middle of doors
+  float min_frontier_m = 0.5f;   // narrower frontiers are ignored (paper 003: "wide enough to
+                                 // accommodate the exploring UAS")
+  float goal_inset_m = 0.3f;     // the flight ends this far short of the frontier, in known free
+                                 // space (paper 003: "a predefined distance apart")
+  float lookahead_m = 1.0f;      // the carrot along the path: K_fr * 1 m is the speed limit
+  float field_weight = 1.0f;     // the wall-following field's share of the command (0: none)
+  float draw_period_s = 0.1f;    // scans drawn at most this often (the UTM-30LX's 40 Hz: 1 in 4)
+  float replan_period_s = 1.0f;  // planned at least this often, and on arrival
+  float progress_m = 0.5f;       // a goal whose path has not shortened by this within
+  float patience_s = 15.0f;      //   this long is blacklisted (paper 003), and so is one
+  float goal_time_limit_s = 60.0f;  // not reached within this
+  float blacklist_radius_m = 0.6f;  // frontier cells this close to a blacklisted goal are no
+                                    // longer frontier cells
+  float goal_match_m = 1.5f;     // a frontier whose nearest cell is this close to the goal's is
+                                 // the same goal (its nearest cell moves as the vehicle does)
+  float stuck_radius_m = 1.0f;   // paper 004's stuck detection: a vehicle that has not left a
+  float stuck_time_s = 20.0f;    //   disc of this radius for this long gives its goal up
+                                 //   (whatever the goal: two frontiers that flicker in and out
+                                 //   of the grid take turns and restart every goal's timers)
+  float switch_margin_m = 1.0f;  // a frontier replaces the current goal only if this much nearer
+  uint8_t empty_plans_to_finish = 3;  // plans in a row with no accessible frontier: explored
+
+  // kInvalidArgument for a value outside its domain (checked by Params::validate).
+  Status validate() const;
+};
+
 struct Params {
   WallFollowParams wall;
   SrtParams srt;
   GuidanceParams guidance;
   ApproachParams approach;
+  FrontierParams frontier;
 
   // kInvalidArgument when a value is outside its domain (non-finite, negative, r_safe >= r_t,
   // more sectors than kMaxSectors, ...).
