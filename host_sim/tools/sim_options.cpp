@@ -11,7 +11,7 @@ std::string sim_usage() {
   std::string u =
       "usage: kestrel-sim [--world NAME|FILE] [--laser utm30lx|urg04lx] [--duration S] [--seed N]\n"
       "                   --out DIR [--mission NAME] [--script FILE] [--waypoints FILE]\n"
-      "                   [--explorer blend|wallfollow|srt] [--mission-arg KEY=VALUE]\n"
+      "                   [--explorer blend|wallfollow|srt|frontier] [--mission-arg KEY=VALUE]\n"
       "                   [--config FILE] [--record] [--trace-scans]\n"
       "  --world     a compiled-in world (iarc-arena, gt-building, lobby, hallway, cluttered-lab)\n"
       "              or a world file (default iarc-arena)\n"

@@ -198,6 +198,8 @@ TEST(FrontierExplorer, RefusesInconsistentParameters) {
   Rig r;
   Params p;
   p.frontier.lethal_m = 0.3f;  // nearer the walls than the limiter's 0.4 m allows
+  p.frontier.relaxed_lethal_m = 0.25f;
+  EXPECT_EQ(p.validate(), Status::kOk);  // alone consistent: the other explorers take it
   EXPECT_EQ(r.configure(p), Status::kInvalidArgument);
   p.approach.enabled = false;
   EXPECT_EQ(r.configure(p), Status::kOk);

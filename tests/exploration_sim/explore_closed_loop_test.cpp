@@ -57,7 +57,8 @@ struct Flight {
   Eigen::Vector3d final_truth = Eigen::Vector3d::Zero();
 };
 
-Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool utm30lx, double explore_s) {
+Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool utm30lx, double explore_s,
+               const MissionOptions& extra = {}) {
   Flight f;
   EXPECT_TRUE(w.ok) << w.error;
   SimConfig cfg;
@@ -69,6 +70,7 @@ Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool ut
   MissionOptions opt;
   opt.values["explorer"] = "blend";
   opt.values["explore_s"] = std::to_string(explore_s);
+  for (const auto& [k, v] : extra.values) opt.values[k] = v;
   std::string err;
   const MissionInfo* info = find_mission("explore");
   EXPECT_NE(info, nullptr);
@@ -92,8 +94,15 @@ Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool ut
   return f;
 }
 
-Flight explore_gt_building(double seconds, uint32_t seed = 1, bool utm30lx = false, double explore_s = 600) {
-  return explore(load_builtin_world("gt-building"), seconds, seed, utm30lx, explore_s);
+Flight explore_gt_building(double seconds, uint32_t seed = 1, bool utm30lx = false, double explore_s = 600,
+                           const MissionOptions& extra = {}) {
+  return explore(load_builtin_world("gt-building"), seconds, seed, utm30lx, explore_s, extra);
+}
+
+MissionOptions frontier_explorer() {
+  MissionOptions o;
+  o.values["explorer"] = "frontier";
+  return o;
 }
 
 // A 4 m room; the vehicle takes off facing its east wall (x = 4) from 0.36 m away. The body's
@@ -181,6 +190,24 @@ TEST(ExploreClosedLoop, ExploresEveryRoomWithoutCollisionUrg04lx) {
   // The URG-04LX flies with it, and the filter takes its corrections (seed 4: 248 in 11,458 scans).
   EXPECT_GT(f.slam_scans, 1000.0);
   EXPECT_GT(f.nav_corrections, 10.0);
+}
+
+// Paper 003's grid frontier explorer: every room, sooner than the blend, then it reports the
+// building explored and the mission flies home well before explore_s.
+TEST(ExploreClosedLoop, FrontierExplorerExploresEveryRoomAndFinishesUtm30lx) {
+  const Flight f = explore_gt_building(2100.0, 4, true, 1800.0, frontier_explorer());
+  expect_ninety_percent_safely(f, 7);
+  EXPECT_TRUE(f.landed);
+  EXPECT_TRUE(f.returned_home);
+  EXPECT_LT(f.run.end.seconds(), 900.0);
+}
+
+TEST(ExploreClosedLoop, FrontierExplorerExploresEveryRoomAndFinishesUrg04lx) {
+  const Flight f = explore_gt_building(2100.0, 4, false, 1800.0, frontier_explorer());
+  expect_ninety_percent_safely(f, 7);
+  EXPECT_TRUE(f.landed);
+  EXPECT_TRUE(f.returned_home);
+  EXPECT_LT(f.run.end.seconds(), 900.0);
 }
 #endif
 

@@ -209,6 +209,10 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "srt_range_m" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d <= 0 || d >= 65) return "srt_range_m: '" + value + "' is not a range in (0, 65) m";
       out.stack.explorer.srt.perception_range_m = static_cast<float>(d);
+    } else if (key == "frontier_reach_m" && kind == mission::MissionKind::kExplore) {
+      // How far the frontier explorer's rays draw (4 m by default, for both lasers).
+      if (!parse_double(value, d) || d <= 0 || d > 30) return "frontier_reach_m: '" + value + "' is not a range in (0, 30] m";
+      out.stack.explorer.frontier.reach_m = static_cast<float>(d);
     } else if (key == "speed_limit_mps" && kind == mission::MissionKind::kExplore) {
       // Section V's speed limit (0.5 m/s by default, paper 002's); the approach limiter
       // still bounds the closing speed on every return, unless approach=off.

@@ -35,7 +35,7 @@ const std::vector<MissionInfo>& mission_table() {
       {"hover", "autonomy stack: take off, hover at 1 m (hover_s, default 60 s), land", make_flight<mission::MissionKind::kHover>},
       {"waypoints", "autonomy stack: fly the waypoints of --waypoints FILE (x y z [heading_deg [hold_s]]), land",
        make_flight<mission::MissionKind::kWaypoints>},
-      {"explore", "autonomy stack: explore (--explorer blend|wallfollow|srt), fly home along the trail, land",
+      {"explore", "autonomy stack: explore (--explorer blend|wallfollow|srt|frontier), fly home along the trail, land",
        make_flight<mission::MissionKind::kExplore>},
       {"hil", "hardware in the loop: serve the devices to kestrel-fw --hil 127.0.0.1:PORT (port=5760), real time",
        hil::make_hil_bridge},

@@ -13,9 +13,11 @@
 #include "kestrel/core/messages.hpp"
 #include "kestrel/exploration/approach_limiter.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
+#include "kestrel/exploration/frontier_explorer.hpp"
 #include "kestrel/exploration/srt_star_planner.hpp"
 #include "kestrel/exploration/unflown_bearings.hpp"
 #include "kestrel/exploration/visited_grid.hpp"
+#include "synthetic_world.hpp"
 
 namespace {
 
@@ -205,7 +207,72 @@ void BM_UnflownCount(benchmark::State& s) {
     benchmark::DoNotOptimize(bearings->total());
   }
 }
+// The grid frontier explorer (paper 003) in a 15 x 10 m hall split by a wall with a 1 m door,
+// after a walk through its west half: one cycle of both levels, the scan drawn and a whole
+// plan made (obstacle distance, search, frontiers, path) every iteration (replan_period_s
+// shortened to force it; by default a plan is made once a second). `frontier_guidance` is
+// level 2 alone, the guidance task's share.
+struct FrontierHall {
+  std::unique_ptr<FrontierExplorer> ex = std::make_unique<FrontierExplorer>();
+  test::SegmentWorld world;
+  test::LaserModel laser;
+  double t = 0;
+  GuidanceSetpoint out;
+  explicit FrontierHall(const test::LaserModel& l) : laser(l) {
+    world.add_box(0, 0, 15, 10);
+    world.add(7, 0, 7, 4.5);
+    world.add(7, 5.5, 7, 10);
+    world.add_box(3, 3, 3.4, 3.4);
+  }
+  bool start(bool replan_every_cycle) {
+    Params p;
+    if (replan_every_cycle) p.frontier.replan_period_s = 1e-3f;
+    p.frontier.draw_period_s = 0.0f;
+    if (ex->configure(p, BeamGeometry::of(world.scan(laser, 1, 5, 0))) != Status::kOk) return false;
+    for (int k = 0; k < 80; ++k) cycle(1.0f + 0.07f * static_cast<float>(k), 5.0f + std::sin(0.1f * static_cast<float>(k)), 0.08f * static_cast<float>(k), true);
+    return ex->plan_in_flight().has_goal;
+  }
+  void cycle(float x, float y, float heading, bool level3) {
+    t += 0.1;
+    const auto s = std::make_unique<LaserScan>(world.scan(laser, x, y, heading, TimeUs::from_s(t)));
+    step_with(*s, x, y, heading, level3);
+  }
+  void step_with(LaserScan& s, float x, float y, float heading, bool level3) {
+    NavState nav;
+    nav.valid = true;
+    nav.position_m = {x, y, 1.0f};
+    nav.heading_rad = heading;
+    (void)ex->step(nav, s, out);
+    if (level3) ex->background_step();
+  }
+};
+
+void frontier_cycle(benchmark::State& state, const test::LaserModel& laser, bool level3) {
+  FrontierHall h(laser);
+  if (!h.start(level3)) {
+    state.SkipWithError("no plan after the walk");
+    return;
+  }
+  auto scan = std::make_unique<LaserScan>(h.world.scan(laser, 6.5, 5.0, 0.2));
+  for (auto _ : state) {
+    h.t += 0.1;
+    scan->stamp = TimeUs::from_s(h.t);
+    h.step_with(*scan, 6.5f, 5.0f, 0.2f, level3);
+    benchmark::DoNotOptimize(h.out.velocity_mps.x());
+  }
+  state.counters["frontiers"] = static_cast<double>(h.ex->frontiers().size());
+  state.counters["peak_open"] = static_cast<double>(h.ex->counters().peak_open);
+}
+void BM_FrontierCycleUrg(benchmark::State& s) { frontier_cycle(s, test::LaserModel::urg04lx(), true); }
+void BM_FrontierCycleUtm(benchmark::State& s) { frontier_cycle(s, test::LaserModel::utm30lx(), true); }
+void BM_FrontierGuidanceUrg(benchmark::State& s) { frontier_cycle(s, test::LaserModel::urg04lx(), false); }
+void BM_FrontierGuidanceUtm(benchmark::State& s) { frontier_cycle(s, test::LaserModel::utm30lx(), false); }
+
 BENCHMARK(BM_GuidanceStepUrg)->Name("exploration/guidance_step/urg04lx_682");
+BENCHMARK(BM_FrontierCycleUrg)->Name("exploration/frontier_plan_cycle/urg04lx_682_hall_15x10m");
+BENCHMARK(BM_FrontierCycleUtm)->Name("exploration/frontier_plan_cycle/utm30lx_1081_hall_15x10m");
+BENCHMARK(BM_FrontierGuidanceUrg)->Name("exploration/frontier_guidance/urg04lx_682");
+BENCHMARK(BM_FrontierGuidanceUtm)->Name("exploration/frontier_guidance/utm30lx_1081");
 BENCHMARK(BM_GuidanceStepUtm)->Name("exploration/guidance_step/utm30lx_1081");
 BENCHMARK(BM_ApproachCornerUrg)->Name("exploration/approach_limit_corner/urg04lx_682");
 BENCHMARK(BM_ApproachCornerUtm)->Name("exploration/approach_limit_corner/utm30lx_1081");

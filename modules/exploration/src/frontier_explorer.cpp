@@ -21,6 +21,11 @@ uint32_t cost_of(float metres, float cell_m) { return static_cast<uint32_t>(std:
 
 }  // namespace
 
+Status FrontierExplorer::configure_strategy() {
+  const bool ok = !params_.approach.enabled || params_.approach.stop_distance_m <= params_.frontier.lethal_m;
+  return ok ? Status::kOk : Status::kInvalidArgument;
+}
+
 void FrontierExplorer::reset_strategy() {
   plan_ = FrontierPlan{};
   have_plan_ = false;

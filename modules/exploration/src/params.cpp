@@ -67,10 +67,7 @@ Status Params::validate() const {
   // A waypoint is drawn clearance_m from the returns: the limiter must let the vehicle get there.
   const bool approach_ok = approach.validate() == Status::kOk &&
                            (!approach.enabled || approach.stop_distance_m <= srt.clearance_m);
-  // The same for the frontier explorer's paths: no cell nearer a wall than the limiter allows.
-  const bool frontier_ok = frontier.validate() == Status::kOk &&
-                           (!approach.enabled || approach.stop_distance_m <= frontier.lethal_m);
-  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach_ok && frontier_ok
+  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach_ok && frontier.validate() == Status::kOk
              ? Status::kOk
              : Status::kInvalidArgument;
 }

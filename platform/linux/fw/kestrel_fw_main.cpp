@@ -53,7 +53,7 @@ struct Options {
 
 constexpr const char* kUsage =
     "usage: kestrel-fw (--hil HOST:PORT | --hokuyo DEV --autopilot DEV [--baud N])\n"
-    "                  [--laser utm30lx|urg04lx] [--mission hover|explore] [--explorer blend|wallfollow|srt]\n"
+    "                  [--laser utm30lx|urg04lx] [--mission hover|explore] [--explorer blend|wallfollow|srt|frontier]\n"
     "                  [--hover-s S] [--max-s S] [--ekf FILE] [--controller FILE] [--slam on|off]\n";
 
 int usage(const char* why) {
@@ -70,7 +70,7 @@ int help() {
       "  --hokuyo DEV       the laser's serial device; --autopilot DEV the autopilot's; --baud N (115200)\n"
       "  --laser L          the laser model: utm30lx (default) or urg04lx\n"
       "  --mission M        hover (take off, hover --hover-s seconds (60), land; default) or explore\n"
-      "  --explorer E       blend (default), wallfollow or srt, for --mission explore\n"
+      "  --explorer E       blend (default), wallfollow, srt or frontier, for --mission explore\n"
       "  --max-s S          stop after S seconds (default 900)\n"
       "  --ekf FILE         EKF parameter file (kestrel-tune-ekf writes one), over the laser's defaults\n"
       "  --controller FILE  controller parameter file (kestrel-sysid writes one)\n"

@@ -7,7 +7,7 @@
 //
 // Options (--mission-arg KEY=VALUE, or the named CLI flags):
 //   waypoints=FILE   one waypoint per line: x y z [heading_deg [hold_s]] (waypoints mission)
-//   explorer=NAME    blend (default), wallfollow or srt (explore mission)
+//   explorer=NAME    blend (default), wallfollow, srt or frontier (explore mission)
 //   hover_s=S        time at the hover set-point (default 60)
 //   explore_s=S      explore phase time limit (default 600)
 //   delay_s=S        extra delivery delay of every scan (paper 000 Figure 3b)

@@ -89,6 +89,9 @@ class FrontierExplorer final : public ExplorerBase {
 
   Status plan(const Pose2& pose, const LaserScan& scan, TimeUs now, GuidanceSetpoint& out,
               float& heading_target) override;
+  // kInvalidArgument for a lethal distance below the approach limiter's stop distance: the
+  // limiter would hold the vehicle out of the gaps the planner sends it through.
+  Status configure_strategy() override;
   void reset_strategy() override;
 
   // Level 2.

@@ -149,7 +149,8 @@ struct FrontierParams {
   float reach_m = 4.0f;          // rays draw up to here: the URG-04LX's reach, so that with the
                                  // UTM-30LX too a room counts as explored once flown into
   float lethal_m = 0.40f;        // the planner enters no cell nearer an obstacle: at least the
-                                 // approach limiter's stop distance (checked), which would hold
+                                 // approach limiter's stop distance (checked by the explorer's
+                                 // configure), which would hold
                                  // the vehicle off a narrower gap (gt-building's 0.95 m gap
                                  // keeps a cell or two)
   float relaxed_lethal_m = 0.25f;  // with no frontier accessible, the search is run again with
