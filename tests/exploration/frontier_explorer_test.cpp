@@ -148,7 +148,8 @@ TEST(FrontierExplorer, AVehicleThatCannotMoveGivesItsGoalUp) {
 }
 
 // The operator's keep-out box across the door (a glass pane the laser sees through): the
-// corridor is seen but no path leads there, so the room is all there is to explore.
+// corridor is seen but no path leads there. The grid cannot tell that from walls drawn where
+// there are none, so it is drawn again max_grid_restarts times; then the room is all there is.
 TEST(FrontierExplorer, NoPathCrossesAKeepOutBox) {
   Rig r;
   r.world = room_and_corridor();
@@ -157,10 +158,32 @@ TEST(FrontierExplorer, NoPathCrossesAKeepOutBox) {
   p.srt.keep_out_count = 1;
   p.frontier.relaxed_lethal_m = 0.0f;
   ASSERT_EQ(r.configure(p), Status::kOk);
-  for (int k = 0; k < 150 && !r.ex->finished(); ++k) ASSERT_EQ(r.step(2.0f, 2.0f, 0.05f * static_cast<float>(k)), Status::kOk);
+  for (int k = 0; k < 600 && !r.ex->finished(); ++k) {
+    ASSERT_EQ(r.step(2.0f, 2.0f, 0.05f * static_cast<float>(k)), Status::kOk);
+    for (const Point2& q : r.ex->plan_in_flight().path) ASSERT_LT(q.x, 3.8f);
+  }
   EXPECT_TRUE(r.ex->finished());
-  const FrontierPlan& plan = r.ex->plan_in_flight();
-  for (const Point2& q : plan.path) EXPECT_LT(q.x, 3.8f);
+  EXPECT_EQ(r.ex->counters().grid_restarts, p.frontier.max_grid_restarts);
+}
+
+// Frontiers the search cannot reach, with none it can: the grid is forgotten and drawn again
+// from where the vehicle is (walls drawn while the estimate ran away shut the rest off); with
+// max_grid_restarts 0 the explorer finishes at once instead.
+TEST(FrontierExplorer, InaccessibleFrontiersRestartTheGridAFewTimes) {
+  for (uint8_t restarts : {uint8_t{0}, uint8_t{1}}) {
+    Rig r;
+    r.world = room_and_corridor();
+    Params p;
+    p.srt.keep_out[0] = {3.8f, 1.2f, 4.4f, 2.8f};
+    p.srt.keep_out_count = 1;
+    p.frontier.max_grid_restarts = restarts;
+    ASSERT_EQ(r.configure(p), Status::kOk);
+    int k = 0;
+    for (; k < 600 && !r.ex->finished(); ++k) ASSERT_EQ(r.step(2.0f, 2.0f, 0.05f * static_cast<float>(k)), Status::kOk);
+    EXPECT_TRUE(r.ex->finished());
+    EXPECT_EQ(r.ex->counters().grid_restarts, restarts);
+    EXPECT_GT(r.ex->frontier_cells().inaccessible(), 0u);
+  }
 }
 
 // Paper 003: a goal pose placed a predefined distance apart from the frontier, in free space.

@@ -99,11 +99,6 @@ Flight explore_gt_building(double seconds, uint32_t seed = 1, bool utm30lx = fal
   return explore(load_builtin_world("gt-building"), seconds, seed, utm30lx, explore_s, extra);
 }
 
-MissionOptions frontier_explorer() {
-  MissionOptions o;
-  o.values["explorer"] = "frontier";
-  return o;
-}
 
 // A 4 m room; the vehicle takes off facing its east wall (x = 4) from 0.36 m away. The body's
 // 0.27 m radius and the wall's 0.05 m half thickness leave 4 cm: landing on home is no contact,
@@ -190,6 +185,12 @@ TEST(ExploreClosedLoop, ExploresEveryRoomWithoutCollisionUrg04lx) {
   // The URG-04LX flies with it, and the filter takes its corrections (seed 4: 248 in 11,458 scans).
   EXPECT_GT(f.slam_scans, 1000.0);
   EXPECT_GT(f.nav_corrections, 10.0);
+}
+
+MissionOptions frontier_explorer() {
+  MissionOptions o;
+  o.values["explorer"] = "frontier";
+  return o;
 }
 
 // Paper 003's grid frontier explorer: every room, sooner than the blend, then it reports the

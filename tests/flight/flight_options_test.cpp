@@ -54,7 +54,8 @@ TEST(FlightOptions, MalformedKeepOutsAreRefusedWithAReason) {
 TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   const sim::MissionOptions opt =
       options({{"approach", "off"}, {"approach_blind_mps", "0.2"}, {"srt_range_m", "5"}, {"altitude_m", "1.2"},
-               {"speed_limit_mps", "0.8"}, {"explorer", "frontier"}, {"frontier_reach_m", "8"}});
+               {"speed_limit_mps", "0.8"}, {"explorer", "frontier"}, {"frontier_reach_m", "8"},
+               {"frontier_relaxed_m", "0.3"}, {"frontier_coastal", "0"}});
   FlightOptions f;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
   EXPECT_FALSE(f.stack.explorer.approach.enabled);
@@ -64,6 +65,8 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   EXPECT_FLOAT_EQ(f.stack.explorer.guidance.speed_limit_mps, 0.8f);
   EXPECT_EQ(f.stack.explorer_kind, exploration::ExplorerKind::kFrontier);
   EXPECT_FLOAT_EQ(f.stack.explorer.frontier.reach_m, 8.0f);
+  EXPECT_FLOAT_EQ(f.stack.explorer.frontier.relaxed_lethal_m, 0.3f);
+  EXPECT_FLOAT_EQ(f.stack.explorer.frontier.coastal_fraction, 0.0f);
   EXPECT_EQ(f.stack.explorer.validate(), Status::kOk);
   for (const auto& [key, bad] : {std::pair<const char*, const char*>{"approach", "maybe"},
                                  {"approach_blind_mps", "-1"},
@@ -74,6 +77,8 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
                                  {"explorer", "grid"},
                                  {"frontier_reach_m", "0"},
                                  {"frontier_reach_m", "31"},
+                                 {"frontier_relaxed_m", "-0.1"},
+                                 {"frontier_coastal", "1.5"},
                                  {"altitude_m", "0.1"},
                                  {"altitude_m", "high"}}) {
     const sim::MissionOptions b = options({{key, bad}});

@@ -7,6 +7,7 @@
 #include "grid_fixture.hpp"
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/planning/grid_search.hpp"
+#include "kestrel/planning/path_simplify.hpp"
 
 namespace kestrel::planning {
 namespace {
@@ -85,6 +86,35 @@ TEST(GridSearch, PenaltyKeepsPathsInTheMiddle) {
   const Cell mid = path[path.size() / 2];
   EXPECT_GE(mid.y, 146);
   EXPECT_LE(mid.y, 150);
+}
+
+// Coastal navigation: with cells far from every wall dearer, the path across an open room
+// goes round by the walls instead of straight across the middle.
+TEST(GridSearch, CoastalPenaltyKeepsPathsNearWalls) {
+  Planner p;
+  paint(*p.grid, 100, 100, 160, 160, kWallCell);
+  paint(*p.grid, 101, 101, 159, 159, kFreeCell);  // 59 cells (7 m) across
+  const uint8_t far = 24;                         // 8 cells, 0.96 m
+  ASSERT_EQ(p.run({104, 130}, SearchCosts{4, 8, 10, 0, 0}), Status::kOk);
+  PathCells straight;
+  ASSERT_EQ(p.search->path_to({156, 130}, straight), Status::kOk);
+  EXPECT_GE(p.distance->at(straight[straight.size() / 2]), far);  // straight across the middle
+  ASSERT_EQ(p.run({104, 130}, SearchCosts{4, 8, 10, far, 40}), Status::kOk);
+  PathCells coastal;
+  ASSERT_EQ(p.search->path_to({156, 130}, coastal), Status::kOk);
+  for (const Cell& c : coastal) EXPECT_LT(p.distance->at(c), far + 3) << c.x << "," << c.y;
+  EXPECT_GT(coastal.size(), straight.size());
+  // The legs keep to the coast too: no shortcut across the middle.
+  PathPoints legs;
+  ASSERT_EQ(simplify_path(*p.grid, *p.distance, coastal, legs, far), Status::kOk);
+  for (std::size_t i = 1; i < legs.size(); ++i) {
+    Cell a, b;
+    ASSERT_TRUE(p.grid->geometry().to_cell(legs[i - 1].x, legs[i - 1].y, a));
+    ASSERT_TRUE(p.grid->geometry().to_cell(legs[i].x, legs[i].y, b));
+    EXPECT_TRUE(line_clear(*p.grid, *p.distance, a, b, 0, far + 3)) << "leg " << i;
+  }
+  EXPECT_EQ(p.run({104, 130}, SearchCosts{4, 8, 10, 8, 40}), Status::kInvalidArgument);   // far inside soft
+  EXPECT_EQ(p.run({104, 130}, SearchCosts{4, 8, 30, 24, 40}), Status::kInvalidArgument);  // penalties over 60
 }
 
 TEST(GridSearch, PathsRunFromTheStartToTheGoalInNeighbouringCells) {

@@ -1,4 +1,5 @@
 #include "kestrel/flight/autonomy_mission.hpp"
+#include "kestrel/flight/grid_map_image.hpp"
 #include "kestrel/flight/slam_map_image.hpp"
 
 #include <cmath>
@@ -213,6 +214,14 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       // How far the frontier explorer's rays draw (4 m by default, for both lasers).
       if (!parse_double(value, d) || d <= 0 || d > 30) return "frontier_reach_m: '" + value + "' is not a range in (0, 30] m";
       out.stack.explorer.frontier.reach_m = static_cast<float>(d);
+    } else if (key == "frontier_relaxed_m" && kind == mission::MissionKind::kExplore) {
+      // The frontier explorer's second search (0: none); at most its lethal distance (checked at start).
+      if (!parse_double(value, d) || d < 0 || d > 2) return "frontier_relaxed_m: '" + value + "' is not a distance in [0, 2] m";
+      out.stack.explorer.frontier.relaxed_lethal_m = static_cast<float>(d);
+    } else if (key == "frontier_coastal" && kind == mission::MissionKind::kExplore) {
+      // Coastal navigation: the share of the laser's range within which paths keep to walls (0: off).
+      if (!parse_double(value, d) || d < 0 || d > 1) return "frontier_coastal: '" + value + "' is not a fraction in [0, 1]";
+      out.stack.explorer.frontier.coastal_fraction = static_cast<float>(d);
     } else if (key == "speed_limit_mps" && kind == mission::MissionKind::kExplore) {
       // Section V's speed limit (0.5 m/s by default, paper 002's); the approach limiter
       // still bounds the closing speed on every return, unless approach=off.
@@ -454,6 +463,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
           {"scans_offered", k.scans_offered}, {"scans_dropped", k.scans_dropped}, {"scans_drawn", k.scans_drawn},
           {"draw_errors", k.draw_errors},     {"plans", k.plans},                 {"plans_dropped", k.plans_dropped},
           {"plans_taken", k.plans_taken},     {"search_failures", k.search_failures}, {"relaxed_plans", k.relaxed_plans},
+          {"grid_restarts", k.grid_restarts},
           {"goals", k.goals},
           {"arrivals", k.arrivals},           {"blacklisted", k.blacklisted},     {"stuck", k.stuck},
           {"peak_open", k.peak_open}};
@@ -505,6 +515,12 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
       if (output::write_png(dir + "/slam_map.png", c) != Status::kOk) return Status::kIoError;
     }
 #endif
+  }
+  // Without the SLAM, the frontier explorer's grid is the flight's map.
+  const exploration::Explorer* e = stack_ ? stack_->explorer() : nullptr;
+  if (stack_ && !stack_->slam().started() && e != nullptr && e->kind() == exploration::ExplorerKind::kFrontier) {
+    const output::GridImage grid = grid_map_image(static_cast<const exploration::FrontierExplorer&>(*e).grid());
+    if (grid.width > 0 && output::write_map(dir + "/map", grid) != Status::kOk) return Status::kIoError;
   }
   if (options_.kind == mission::MissionKind::kExplore && recorder() != nullptr) {
     // The numbers behind coverage_vs_time.png, so a sweep can average runs on one plot

@@ -21,6 +21,18 @@ bool FrontierClusterFinder::is_frontier(const OccupancyGrid& grid, int x, int y)
 
 void FrontierClusterFinder::find(const OccupancyGrid& grid, const GridSearch& search, const CellBox& box,
                                  uint16_t min_cells, std::span<const ExcludedDisc> excluded, FrontierClusters& out) {
+  find_impl(grid, search, box, min_cells, excluded, nullptr, 0, out);
+}
+
+void FrontierClusterFinder::find(const OccupancyGrid& grid, const GridSearch& search, const CellBox& box,
+                                 uint16_t min_cells, std::span<const ExcludedDisc> excluded,
+                                 const planning::ObstacleDistance& distance, uint8_t open, FrontierClusters& out) {
+  find_impl(grid, search, box, min_cells, excluded, &distance, open, out);
+}
+
+void FrontierClusterFinder::find_impl(const OccupancyGrid& grid, const GridSearch& search, const CellBox& box,
+                                      uint16_t min_cells, std::span<const ExcludedDisc> excluded,
+                                      const planning::ObstacleDistance* distance, uint8_t open, FrontierClusters& out) {
   const auto usable = [&](int x, int y) {
     if (!is_frontier(grid, x, y)) return false;
     for (const ExcludedDisc& d : excluded)
@@ -29,6 +41,7 @@ void FrontierClusterFinder::find(const OccupancyGrid& grid, const GridSearch& se
   };
   out.clear();
   dropped_ = 0;
+  inaccessible_ = 0;
   const CellBox b = box.grown(0);  // clipped to the grid
   seen_.fill(0);  // 32 KiB
   if (b.empty()) return;
@@ -41,6 +54,7 @@ void FrontierClusterFinder::find(const OccupancyGrid& grid, const GridSearch& se
       set(seen_, x, y);
       FrontierCluster c;
       c.cost = GridSearch::kUnreached;
+      bool in_the_open = distance == nullptr;
       float sx = 0, sy = 0;
       uint32_t n = 0;
       while (head < tail) {
@@ -49,6 +63,7 @@ void FrontierClusterFinder::find(const OccupancyGrid& grid, const GridSearch& se
         const Point2 p = grid.geometry().centre_of(q);
         sx += p.x;
         sy += p.y;
+        if (!in_the_open && distance->at(q) >= open) in_the_open = true;
         const uint16_t k = search.cost(q);
         if (k < c.cost) {
           c.cost = k;
@@ -66,7 +81,11 @@ void FrontierClusterFinder::find(const OccupancyGrid& grid, const GridSearch& se
       }
       c.cells = static_cast<uint16_t>(std::min<uint32_t>(n, 0xFFFF));
       c.centroid = {sx / static_cast<float>(n), sy / static_cast<float>(n)};
-      if (c.cells < min_cells || c.cost == GridSearch::kUnreached) continue;
+      if (c.cells < min_cells) continue;
+      if (c.cost == GridSearch::kUnreached) {
+        if (in_the_open) ++inaccessible_;
+        continue;
+      }
       if (out.full()) {
         // Keep the cheapest: replace the dearest if this one is cheaper.
         auto worst = std::max_element(out.begin(), out.end(),

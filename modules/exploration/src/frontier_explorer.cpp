@@ -232,8 +232,8 @@ void FrontierExplorer::replan(TimeUs now) {
   planned_ = true;
   last_plan_ = now;
   ++level3_.plans;
-  // The operator's keep-out boxes are obstacles to the planner (grown by the lethal distance
-  // like every obstacle): a window the beams pass is no way through.
+  // The operator's keep-out boxes are obstacles to the planner (kept lethal_m off even by the
+  // relaxed search): a window the beams pass is no way through.
   std::array<CellBox, kMaxKeepOuts> blocked{};
   std::size_t n_blocked = 0;
   for (std::size_t i = 0; i < params_.srt.keep_out_count && i < kMaxKeepOuts; ++i) {
@@ -243,7 +243,9 @@ void FrontierExplorer::replan(TimeUs now) {
       const float fy = std::clamp((y - geo.origin.y) / geo.cell_m, 0.0f, static_cast<float>(planning::kGridSide - 1));
       return Cell{static_cast<int16_t>(fx), static_cast<int16_t>(fy)};
     };
-    const Cell a = clamp_cell(k.x_min, k.y_min), b = clamp_cell(k.x_max, k.y_max);
+    // Grown by what the relaxed search gives up: no search comes nearer than lethal_m.
+    const float grow = fp.relaxed_lethal_m > 0.0f ? fp.lethal_m - std::min(fp.relaxed_lethal_m, fp.lethal_m) : 0.0f;
+    const Cell a = clamp_cell(k.x_min - grow, k.y_min - grow), b = clamp_cell(k.x_max + grow, k.y_max + grow);
     blocked[n_blocked++] = {a.x, a.y, b.x, b.y};
   }
   const CellBox box = grid_.drawn().grown(2);
@@ -281,7 +283,18 @@ void FrontierExplorer::replan(TimeUs now) {
   if (chosen == nullptr) {
     goal_active_ = false;
     if (empty_plans_ < 255) ++empty_plans_;
-    if (empty_plans_ >= fp.empty_plans_to_finish) finished_.store(true, std::memory_order_release);
+    if (empty_plans_ >= fp.empty_plans_to_finish) {
+      if (finder_.inaccessible() > 0 && level3_.grid_restarts < fp.max_grid_restarts) {
+        // Frontiers are left that no path reaches: the grid, not the building, is closed.
+        grid_.clear();
+        blacklist_count_ = blacklist_next_ = 0;
+        empty_plans_ = 0;
+        stuck_armed_ = false;
+        ++level3_.grid_restarts;
+      } else {
+        finished_.store(true, std::memory_order_release);
+      }
+    }
     publish();
     return;
   }
@@ -303,15 +316,29 @@ void FrontierExplorer::replan(TimeUs now) {
     path_cells_.pop_back();
   outgoing_.has_goal = true;
   outgoing_.frontier = frontier;
-  (void)planning::simplify_path(grid_, distance_, path_cells_, outgoing_.path);
+  (void)planning::simplify_path(grid_, distance_, path_cells_, outgoing_.path, coastal_units());
   publish();
+}
+
+uint8_t FrontierExplorer::coastal_units() const {
+  const FrontierParams& fp = params_.frontier;
+  if (fp.coastal_penalty == 0 || !(fp.coastal_fraction > 0.0f)) return 0;
+  const float coast_m = fp.coastal_fraction * static_cast<float>(field_.geometry().max_range_mm) * 1e-3f;
+  const uint8_t u = ObstacleDistance::units_of(coast_m, grid_.geometry().cell_m);
+  // Beyond the distance's reach, or not beyond the soft band: no coast to keep to.
+  return u >= ObstacleDistance::kFar || u <= ObstacleDistance::units_of(fp.soft_m, grid_.geometry().cell_m) ? 0 : u;
 }
 
 bool FrontierExplorer::search_frontiers(float lethal_m, const CellBox& box, Cell start) {
   const FrontierParams& fp = params_.frontier;
   const float cell_m = grid_.geometry().cell_m;
-  const planning::SearchCosts costs{ObstacleDistance::units_of(lethal_m, cell_m),
-                                    ObstacleDistance::units_of(fp.soft_m, cell_m), fp.soft_penalty};
+  planning::SearchCosts costs{ObstacleDistance::units_of(lethal_m, cell_m), ObstacleDistance::units_of(fp.soft_m, cell_m),
+                              fp.soft_penalty};
+  const uint8_t coast = coastal_units();
+  if (coast > 0) {
+    costs.far = coast;
+    costs.far_penalty = fp.coastal_penalty;
+  }
   const Status st = search_.run(grid_, distance_, box, start, costs);
   level3_.peak_open = std::max<uint32_t>(level3_.peak_open, static_cast<uint32_t>(search_.peak_open()));
   if (st != Status::kOk) {
@@ -327,7 +354,7 @@ bool FrontierExplorer::search_frontiers(float lethal_m, const CellBox& box, Cell
     Cell c;
     if (grid_.geometry().to_cell(blacklist_[i].x, blacklist_[i].y, c)) discs[n++] = {c, radius};
   }
-  finder_.find(grid_, search_, box, min_cells, {discs.data(), n}, clusters_);
+  finder_.find(grid_, search_, box, min_cells, {discs.data(), n}, distance_, costs.lethal, clusters_);
   return true;
 }
 

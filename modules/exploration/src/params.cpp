@@ -74,7 +74,8 @@ Status Params::validate() const {
 
 Status FrontierParams::validate() const {
   const bool ok = cell_m >= 0.02f && cell_m <= 1.0f && positive(reach_m) && reach_m <= 60.0f && positive(lethal_m) &&
-                  non_negative(relaxed_lethal_m) && relaxed_lethal_m <= lethal_m && soft_m >= lethal_m && soft_m <= 10.0f && soft_penalty <= 60 && non_negative(min_frontier_m) &&
+                  non_negative(relaxed_lethal_m) && relaxed_lethal_m <= lethal_m && soft_m >= lethal_m && soft_m <= 10.0f && soft_penalty <= 60 &&
+                  non_negative(coastal_fraction) && coastal_fraction <= 1.0f && soft_penalty + coastal_penalty <= 60 && non_negative(min_frontier_m) &&
                   non_negative(goal_inset_m) && goal_inset_m <= 5.0f && positive(lookahead_m) && lookahead_m <= 10.0f &&
                   non_negative(field_weight) && field_weight <= 10.0f && non_negative(draw_period_s) &&
                   draw_period_s <= 10.0f && positive(replan_period_s) && replan_period_s <= 60.0f &&

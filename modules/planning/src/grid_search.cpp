@@ -18,7 +18,10 @@ constexpr Step kSteps[8] = {{1, 0, 10}, {-1, 0, 10}, {0, 1, 10}, {0, -1, 10}, {1
 }  // namespace
 
 Status SearchCosts::validate() const {
-  return soft >= lethal && soft_penalty <= kMaxPenalty ? Status::kOk : Status::kInvalidArgument;
+  const bool far_ok = far_penalty == 0 || far > soft;
+  return soft >= lethal && soft_penalty <= kMaxPenalty && far_penalty <= kMaxPenalty - soft_penalty && far_ok
+             ? Status::kOk
+             : Status::kInvalidArgument;
 }
 
 bool GridSearch::push(uint32_t cell, uint16_t c) {
@@ -56,6 +59,8 @@ Status GridSearch::run(const OccupancyGrid& grid, const ObstacleDistance& distan
       penalty[static_cast<std::size_t>(d)] =
           static_cast<uint16_t>(costs.soft_penalty * (costs.soft - d) / (costs.soft - costs.lethal));
   }
+  if (costs.far_penalty > 0)
+    for (std::size_t d = costs.far; d < penalty.size(); ++d) penalty[d] = costs.far_penalty;
 
   const std::size_t s = cell_index(start.x, start.y);
   cost_[s] = 0;

@@ -10,6 +10,7 @@
 
 #include "kestrel/core/static_vector.hpp"
 #include "kestrel/planning/grid_search.hpp"
+#include "kestrel/planning/obstacle_distance.hpp"
 #include "kestrel/planning/occupancy_grid.hpp"
 
 namespace kestrel::exploration {
@@ -44,9 +45,18 @@ class FrontierClusterFinder {
   // grid's border have no unknown neighbour off the grid.
   void find(const planning::OccupancyGrid& grid, const planning::GridSearch& search, const planning::CellBox& box,
             uint16_t min_cells, std::span<const ExcludedDisc> excluded, FrontierClusters& out);
+  // The same, and inaccessible() counts only the frontiers with a cell at least `open` (chamfer
+  // units) from every obstacle: one the search could have entered, had anything led there.
+  void find(const planning::OccupancyGrid& grid, const planning::GridSearch& search, const planning::CellBox& box,
+            uint16_t min_cells, std::span<const ExcludedDisc> excluded, const planning::ObstacleDistance& distance,
+            uint8_t open, FrontierClusters& out);
   // Whether a cell is a frontier cell (free, with an unknown 4-neighbour).
   static bool is_frontier(const planning::OccupancyGrid& grid, int x, int y);
   uint32_t dropped() const { return dropped_; }
+  // Frontiers of the last find() long enough but not reached by the search, with a cell in the
+  // open (see find): behind walls on the grid (in a drifted estimate's map, walls drawn where
+  // there are none), not slots along walls or pockets beside a keep-out box.
+  uint32_t inaccessible() const { return inaccessible_; }
   // Every frontier cell of the last find(), accessible or not (for pictures).
   bool was_frontier(int x, int y) const { return test(seen_, x, y); }
 
@@ -63,6 +73,10 @@ class FrontierClusterFinder {
   Bits seen_{};
   std::array<planning::Cell, kMaxFrontierQueue> queue_{};
   uint32_t dropped_ = 0;
+  uint32_t inaccessible_ = 0;
+  void find_impl(const planning::OccupancyGrid& grid, const planning::GridSearch& search, const planning::CellBox& box,
+                 uint16_t min_cells, std::span<const ExcludedDisc> excluded, const planning::ObstacleDistance* distance,
+                 uint8_t open, FrontierClusters& out);
 };
 
 }  // namespace kestrel::exploration

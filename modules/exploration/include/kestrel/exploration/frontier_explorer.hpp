@@ -58,6 +58,7 @@ struct FrontierCounters {
   uint32_t plans_dropped = 0;  // the loop had not taken the previous one
   uint32_t search_failures = 0;  // the search's open pool overflowed: no plan that time
   uint32_t relaxed_plans = 0;    // plans that needed the relaxed lethal distance
+  uint32_t grid_restarts = 0;    // grids forgotten with inaccessible frontiers left
   uint32_t goals = 0;            // frontiers chosen
   uint32_t blacklisted = 0;      // goals given up: no progress, too long, stuck, or reached and still a frontier
   uint32_t stuck = 0;            // ... of those, by the stuck detection
@@ -102,6 +103,8 @@ class FrontierExplorer final : public ExplorerBase {
   // The search from the vehicle's cell and the frontiers it reaches; false when the search
   // could not be run (it is counted).
   bool search_frontiers(float lethal_m, const planning::CellBox& box, planning::Cell start);
+  // The coastal distance in chamfer units (0: none for this laser).
+  uint8_t coastal_units() const;
   void judge_goal(TimeUs now);
   void add_to_blacklist(const Point2& p);
   void publish();

@@ -161,6 +161,10 @@ struct FrontierParams {
   float soft_m = 0.90f;          // between lethal_m and this a step costs more, up to
   uint8_t soft_penalty = 30;     //   this much at lethal_m (a straight step costs 10): paths
                                  //   keep to the middle of doors
+  float coastal_fraction = 0.6f;  // coastal navigation: paths keep within this fraction of the
+  uint8_t coastal_penalty = 10;   //   laser's range of a wall, a step farther costing this much
+                                  //   more (10: double); a laser whose range is beyond what
+                                  //   the obstacle distance holds (85 cells) has none
   float min_frontier_m = 0.5f;   // narrower frontiers are ignored (paper 003: "wide enough to
                                  // accommodate the exploring UAS")
   float goal_inset_m = 0.3f;     // the flight ends this far short of the frontier, in known free
@@ -181,7 +185,12 @@ struct FrontierParams {
                                  //   (whatever the goal: two frontiers that flicker in and out
                                  //   of the grid take turns and restart every goal's timers)
   float switch_margin_m = 1.0f;  // a frontier replaces the current goal only if this much nearer
-  uint8_t empty_plans_to_finish = 3;  // plans in a row with no accessible frontier: explored
+  uint8_t empty_plans_to_finish = 3;  // plans in a row with no accessible frontier: explored,
+  uint8_t max_grid_restarts = 2;      // unless inaccessible ones are left: then the grid is
+                                      // forgotten and drawn again from where the vehicle is, at
+                                      // most this many times (walls drawn while the estimate
+                                      // ran away shut the rest of the building off; paper 002's
+                                      // section V restarts for the same reason)
 
   // kInvalidArgument for a value outside its domain (checked by Params::validate).
   Status validate() const;

@@ -29,6 +29,11 @@ struct SearchCosts {
   uint8_t soft = 0;          // ... below which a step costs extra (>= lethal)
   uint8_t soft_penalty = 0;  // extra cost of a straight step at the lethal edge, falling linearly
                              // to 0 at soft (a diagonal's is 1.4 times); at most kMaxPenalty
+  // Coastal navigation (Roy, Burgard, Fox and Thrun, ICRA 1999): a laser of short reach
+  // localises only where it sees walls, so a cell at least `far` from every obstacle costs
+  // far_penalty more per straight step (0: off; at most kMaxPenalty with soft_penalty).
+  uint8_t far = 0;
+  uint8_t far_penalty = 0;
   static constexpr uint8_t kMaxPenalty = 60;
   Status validate() const;
 };
