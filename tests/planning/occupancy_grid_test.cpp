@@ -168,6 +168,31 @@ TEST(OccupancyGrid, MissesClearAWallDrawnInTheWrongPlace) {
   EXPECT_GE(still_walls, 15);
 }
 
+// A wall's cells straddle its line, and the rays that run along its far side pass through
+// them: ten beams a scan at 2 m with the URG-04LX. One scan counts once per cell, so the
+// scans that hit the wall keep it however many of their beams graze it.
+TEST(OccupancyGrid, AScanCountsOncePerCell) {
+  auto g = blank_grid();
+  const kestrel::test::LaserModel urg = kestrel::test::LaserModel::urg04lx();
+  Cell c;
+  ASSERT_TRUE(g->geometry().to_cell(2.0f, 0.0f, c));
+  // A hand-made scan: beam 0 returns from the cell's centre, every other beam passes through
+  // the cell to 3 m (the rays through it, seen from the origin).
+  LaserScan s = kestrel::test::uniform_scan(urg, range_code::kNoReturn);
+  const Point2 centre = g->geometry().centre_of(c);
+  int through = 0;
+  for (uint16_t b = 0; b < urg.beams; ++b) {
+    const double a = urg.first_angle() + urg.step() * b;
+    const double off = std::fabs(std::sin(a) * centre.x - std::cos(a) * centre.y);  // from the ray
+    if (std::cos(a) > 0.9 && off < 0.05) {
+      s.range_mm[b] = through++ == 0 ? static_cast<uint16_t>(std::hypot(centre.x, centre.y) * 1000.0) : 3000;
+    }
+  }
+  ASSERT_GE(through, 7);  // one hit and six misses a scan: uncapped, the misses would win
+  for (int k = 0; k < 20; ++k) ASSERT_EQ(g->draw(s, {0, 0, 0}), Status::kOk);
+  EXPECT_TRUE(occupancy::is_occupied(g->at(c)));
+}
+
 TEST(OccupancyGrid, DrawingDoesNotAllocate) {
   auto g = blank_grid();
   kestrel::test::SegmentWorld w;

@@ -466,6 +466,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
           {"grid_restarts", k.grid_restarts},
           {"goals", k.goals},
           {"arrivals", k.arrivals},           {"blacklisted", k.blacklisted},     {"stuck", k.stuck},
+          {"looked_at", k.looked_at},
           {"peak_open", k.peak_open}};
       for (const auto& [name, v] : rows) out.emplace_back(std::string("frontier.") + name, v);
     }

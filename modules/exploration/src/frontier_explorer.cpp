@@ -15,6 +15,8 @@ float distance(const Point2& a, const Point2& b) { return std::hypot(a.x - b.x, 
 
 // Within this of facing the frontier, the laser (240 or 270 degrees) has it well inside its fan.
 constexpr float kFacingRad = 0.35f;
+// Cells the grid must learn for that to count as progress (a metre of corridor's width, say).
+constexpr uint32_t kNewCellsForProgress = 40;
 
 // Metres as path cost (planning::GridSearch: 10 per straight cell).
 uint32_t cost_of(float metres, float cell_m) { return static_cast<uint32_t>(std::lround(metres / cell_m * 10.0f)); }
@@ -177,6 +179,7 @@ void FrontierExplorer::background_step() {
     ++level3_.scans_drawn;
     pose_ = work_.pose;
     stamp_ = work_.scan.stamp;
+    look_at_goal();
     arrived_ = arrived_ || work_.arrived;
     drew = true;
   }
@@ -203,9 +206,15 @@ void FrontierExplorer::judge_goal(TimeUs now) {
   }
   const FrontierParams& fp = params_.frontier;
   const Point2 goal = grid_.geometry().centre_of(goal_cell_);
+  // Progress is the path to the goal shortening, or the grid learning cells (a flight that
+  // sees new ground is exploring, wherever it heads).
   const uint16_t c = search_.cost(goal_cell_);
   if (c != planning::GridSearch::kUnreached && c + cost_of(fp.progress_m, fp.cell_m) <= best_cost_) {
     best_cost_ = c;
+    last_progress_ = now;
+  }
+  if (grid_.known_cells() >= known_at_progress_ + kNewCellsForProgress) {
+    known_at_progress_ = grid_.known_cells();
     last_progress_ = now;
   }
   const bool still_there = FrontierClusterFinder::is_frontier(grid_, goal_cell_.x, goal_cell_.y);
@@ -217,13 +226,35 @@ void FrontierExplorer::judge_goal(TimeUs now) {
   }
   if (arrived_ && still_there) {
     add_to_blacklist(goal);
+  } else if (still_there && looks_ >= fp.looks_to_give_up) {
+    ++level3_.looked_at;
+    add_to_blacklist(goal);
   } else if (now - stuck_since_ > Duration::from_s(fp.stuck_time_s)) {
     ++level3_.stuck;
     stuck_since_ = now;
     add_to_blacklist(goal);
   } else if (now - last_progress_ > Duration::from_s(fp.patience_s) || now - goal_since_ > Duration::from_s(fp.goal_time_limit_s)) {
+    last_progress_ = now;  // the next goal gets its own patience
     add_to_blacklist(goal);
   }
+}
+
+void FrontierExplorer::look_at_goal() {
+  if (!goal_active_) return;
+  const Point2 goal = grid_.geometry().centre_of(goal_cell_);
+  const float dx = goal.x - pose_.x, dy = goal.y - pose_.y;
+  if (std::hypot(dx, dy) > params_.frontier.look_distance_m) return;
+  // Inside the fan, with a margin of a tenth of it on either side.
+  const BeamGeometry& g = field_.geometry();
+  const float half = 0.4f * std::fabs(g.angle_step_rad) * static_cast<float>(g.beam_count);
+  const float mid = g.first_angle_rad + 0.5f * g.angle_step_rad * static_cast<float>(g.beam_count - 1);
+  if (std::fabs(wrap_angle(std::atan2(dy, dx) - pose_.theta - mid)) <= half && looks_ < 0xFFFF) ++looks_;
+}
+
+bool FrontierExplorer::in_blacklist(const Point2& p) const {
+  for (std::size_t i = 0; i < blacklist_count_; ++i)
+    if (distance(blacklist_[i], p) <= params_.frontier.blacklist_radius_m) return true;
+  return false;
 }
 
 void FrontierExplorer::replan(TimeUs now) {
@@ -263,24 +294,22 @@ void FrontierExplorer::replan(TimeUs now) {
   judge_goal(now);
   arrived_ = false;
 
-  // The cheapest frontier not blacklisted; the current goal's stays unless that one is
-  // switch_margin_m nearer (two frontiers alike in cost would otherwise take turns).
-  const FrontierCluster* best = nullptr;
-  const FrontierCluster* current = nullptr;
-  for (const FrontierCluster& c : clusters_) {
-    const Point2 p = geo.centre_of(c.nearest);
-    if (best == nullptr) best = &c;
-    if (goal_active_ && current == nullptr && distance(p, geo.centre_of(goal_cell_)) <= fp.goal_match_m) current = &c;
-  }
-  const FrontierCluster* chosen = best;
-  if (current != nullptr && !(best->cost + cost_of(fp.switch_margin_m, geo.cell_m) < current->cost)) chosen = current;
-  // The same goal, or a new one: its timers start again only when it is elsewhere.
-  const bool same_goal =
-      chosen != nullptr && goal_active_ && distance(geo.centre_of(chosen->nearest), geo.centre_of(goal_cell_)) <= fp.goal_match_m;
+  // The current goal's cell stays the goal while it is still a frontier cell the search
+  // reaches, unless a frontier switch_margin_m cheaper appears (two frontiers alike in cost
+  // would otherwise take turns); else the cheapest frontier.
+  const FrontierCluster* best = clusters_.empty() ? nullptr : &clusters_[0];
+  bool keep = false;
+  if (goal_active_ && search_.reached(goal_cell_) && FrontierClusterFinder::is_frontier(grid_, goal_cell_.x, goal_cell_.y) &&
+      !in_blacklist(geo.centre_of(goal_cell_)))
+    keep = best == nullptr || !(best->cost + cost_of(fp.switch_margin_m, geo.cell_m) < search_.cost(goal_cell_));
+  const bool have_goal = keep || best != nullptr;
+  const Cell target = keep ? goal_cell_ : (best != nullptr ? best->nearest : Cell{});
+  // A new goal, or the same one (a goal's nearest cell moves as its frontier recedes).
+  const bool same_goal = have_goal && goal_active_ && distance(geo.centre_of(target), geo.centre_of(goal_cell_)) <= fp.goal_match_m;
 
   outgoing_ = FrontierPlan{};
   outgoing_.stamp = now;
-  if (chosen == nullptr) {
+  if (!have_goal) {
     goal_active_ = false;
     if (empty_plans_ < 255) ++empty_plans_;
     if (empty_plans_ >= fp.empty_plans_to_finish) {
@@ -300,18 +329,23 @@ void FrontierExplorer::replan(TimeUs now) {
   }
   empty_plans_ = 0;
   if (!same_goal) {
+    if (!goal_active_) {
+      last_progress_ = now;
+      known_at_progress_ = grid_.known_cells();
+    }
     goal_active_ = true;
-    goal_since_ = last_progress_ = now;
-    best_cost_ = chosen->cost;
+    goal_since_ = now;
+    looks_ = 0;
+    best_cost_ = search_.cost(target);
     ++level3_.goals;
   }
-  goal_cell_ = chosen->nearest;
-  if (search_.path_to(chosen->nearest, path_cells_) != Status::kOk && path_cells_.empty()) {
+  goal_cell_ = target;
+  if (search_.path_to(target, path_cells_) != Status::kOk && path_cells_.empty()) {
     ++level3_.search_failures;
     return;
   }
   // The flight ends goal_inset_m short of the frontier, in known free space.
-  const Point2 frontier = geo.centre_of(chosen->nearest);
+  const Point2 frontier = geo.centre_of(target);
   while (path_cells_.size() > 1 && distance(geo.centre_of(path_cells_.back()), frontier) < fp.goal_inset_m)
     path_cells_.pop_back();
   outgoing_.has_goal = true;

@@ -80,7 +80,7 @@ Status FrontierParams::validate() const {
                   non_negative(field_weight) && field_weight <= 10.0f && non_negative(draw_period_s) &&
                   draw_period_s <= 10.0f && positive(replan_period_s) && replan_period_s <= 60.0f &&
                   positive(progress_m) && positive(patience_s) && positive(goal_time_limit_s) &&
-                  non_negative(blacklist_radius_m) && non_negative(goal_match_m) && positive(stuck_radius_m) && positive(stuck_time_s) &&
+                  non_negative(blacklist_radius_m) && non_negative(goal_match_m) && non_negative(look_distance_m) && looks_to_give_up >= 1 && positive(stuck_radius_m) && positive(stuck_time_s) &&
                   non_negative(switch_margin_m) &&
                   empty_plans_to_finish >= 1;
   // Distances become chamfer units of a third of a cell, at most 255.

@@ -41,24 +41,42 @@ Status OccupancyGrid::configure(const GridParams& params, Point2 home, uint16_t 
 
 void OccupancyGrid::clear() {
   cells_.fill(occupancy::kUnknown);
+  looks_.fill(0);
+  tag_ = 0;
   drawn_ = {};
   scans_drawn_ = 0;
+  known_cells_ = 0;
 }
 
 void OccupancyGrid::set(Cell c, uint8_t v) {
   if (!on_grid(c.x, c.y)) return;
-  cells_[cell_index(c.x, c.y)] = v;
+  uint8_t& cell = cells_[cell_index(c.x, c.y)];
+  if (cell == occupancy::kUnknown && v != occupancy::kUnknown) ++known_cells_;
+  if (cell != occupancy::kUnknown && v == occupancy::kUnknown) --known_cells_;
+  cell = v;
   drawn_.include(c.x, c.y);
 }
 
+bool OccupancyGrid::first_look(std::size_t i, uint8_t bit) {
+  uint8_t& l = looks_[i];
+  if ((l >> 2) != tag_) l = static_cast<uint8_t>(tag_ << 2);
+  if ((l & bit) != 0) return false;
+  l = static_cast<uint8_t>(l | bit);
+  return true;
+}
+
 void OccupancyGrid::free_cell(std::size_t i) {
+  if (!first_look(i, 1u)) return;
   const uint8_t v = cells_[i];
+  if (v == occupancy::kUnknown) ++known_cells_;
   const int base = v == occupancy::kUnknown ? occupancy::kEven : v;
   cells_[i] = static_cast<uint8_t>(std::max(1, base - params_.miss_step));
 }
 
 void OccupancyGrid::hit_cell(std::size_t i) {
+  if (!first_look(i, 2u)) return;
   const uint8_t v = cells_[i];
+  if (v == occupancy::kUnknown) ++known_cells_;
   const int base = v == occupancy::kUnknown ? occupancy::kEven : v;
   cells_[i] = static_cast<uint8_t>(std::min(255, base + params_.hit_step));
 }
@@ -76,6 +94,11 @@ Status OccupancyGrid::draw(const LaserScan& scan, const Pose2& pose) {
   const int64_t sy = std::llround((pose.y - geometry_.origin.y) / geometry_.cell_m * 256.0f);
   const int64_t hc = std::lround(std::cos(pose.theta) * 16384.0f), hs = std::lround(std::sin(pose.theta) * 16384.0f);
   drawn_.include(sensor.x, sensor.y);
+  // A new tag for this scan's looks; every 63 scans the marks are wiped (64 KiB words).
+  if (++tag_ > 63) {
+    looks_.fill(0);
+    tag_ = 1;
+  }
   for (std::size_t b = 0; b < beam_count_; ++b) {
     const uint16_t r = scan.range_mm[b];
     int32_t ray_mm = 0;
@@ -109,7 +132,10 @@ Status OccupancyGrid::draw(const LaserScan& scan, const Pose2& pose) {
       const std::size_t i = cell_index(cx, cy);
       // The sample just before a return is known but not a miss: it may be the same wall.
       if (hit && k == steps - 1) {
-        if (cells_[i] == occupancy::kUnknown) cells_[i] = occupancy::kEven;
+        if (cells_[i] == occupancy::kUnknown) {
+          cells_[i] = occupancy::kEven;
+          ++known_cells_;
+        }
       } else {
         free_cell(i);
       }

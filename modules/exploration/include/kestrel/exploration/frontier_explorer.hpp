@@ -62,6 +62,7 @@ struct FrontierCounters {
   uint32_t goals = 0;            // frontiers chosen
   uint32_t blacklisted = 0;      // goals given up: no progress, too long, stuck, or reached and still a frontier
   uint32_t stuck = 0;            // ... of those, by the stuck detection
+  uint32_t looked_at = 0;        // ... of those, looked at from near and not cleared
   uint32_t peak_open = 0;        // the search's largest wave front
 };
 
@@ -103,9 +104,12 @@ class FrontierExplorer final : public ExplorerBase {
   // The search from the vehicle's cell and the frontiers it reaches; false when the search
   // could not be run (it is counted).
   bool search_frontiers(float lethal_m, const planning::CellBox& box, planning::Cell start);
+  // Counts a scan drawn with the goal near and in the laser's fan.
+  void look_at_goal();
   // The coastal distance in chamfer units (0: none for this laser).
   uint8_t coastal_units() const;
   void judge_goal(TimeUs now);
+  bool in_blacklist(const Point2& p) const;
   void add_to_blacklist(const Point2& p);
   void publish();
 
@@ -151,6 +155,8 @@ class FrontierExplorer final : public ExplorerBase {
   planning::Cell goal_cell_{};
   TimeUs goal_since_{}, last_progress_{};
   uint16_t best_cost_ = 0;
+  uint32_t known_at_progress_ = 0;  // the grid's known cells when progress was last seen
+  uint16_t looks_ = 0;              // scans drawn with the goal near and in the laser's fan
   // The stuck detection's disc: where the vehicle was when it last left the previous one.
   Point2 stuck_anchor_{};
   TimeUs stuck_since_{};

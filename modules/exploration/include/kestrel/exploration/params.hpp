@@ -153,11 +153,14 @@ struct FrontierParams {
                                  // configure), which would hold
                                  // the vehicle off a narrower gap (gt-building's 0.95 m gap
                                  // keeps a cell or two)
-  float relaxed_lethal_m = 0.25f;  // with no frontier accessible, the search is run again with
+  float relaxed_lethal_m = 0.35f;  // with no frontier accessible, the search is run again with
                                    // this: walls drawn twice a few decimetres apart (the
                                    // estimate had drifted) narrow a door on the grid that is
                                    // wide enough in truth; the limiter and the field fly the
-                                   // real one (0: no second search)
+                                   // real one (0: no second search). Above the vehicle's 0.27 m
+                                   // and a wall's 0.05 m half thickness: a cell's centre may
+                                   // lie 6 cm from the wall it holds, and a jamb seen edge-on
+                                   // is not in the scan the limiter works on
   float soft_m = 0.90f;          // between lethal_m and this a step costs more, up to
   uint8_t soft_penalty = 30;     //   this much at lethal_m (a straight step costs 10): paths
                                  //   keep to the middle of doors
@@ -180,6 +183,10 @@ struct FrontierParams {
                                     // longer frontier cells
   float goal_match_m = 1.5f;     // a frontier whose nearest cell is this close to the goal's is
                                  // the same goal (its nearest cell moves as the vehicle does)
+  float look_distance_m = 1.5f;  // a goal looked at from within this (in the laser's fan) for
+  uint16_t looks_to_give_up = 20;  //   this many scans drawn and still a frontier is given up:
+                                   //   what lies behind it cannot be seen from here (a wall seen
+                                   //   edge-on, whose line the rays pass along)
   float stuck_radius_m = 1.0f;   // paper 004's stuck detection: a vehicle that has not left a
   float stuck_time_s = 20.0f;    //   disc of this radius for this long gives its goal up
                                  //   (whatever the goal: two frontiers that flicker in and out

@@ -14,7 +14,10 @@
 // clears nothing there: glass and open space look alike; the operator's keep-out boxes tell
 // the planner of glass); the other codes (too near, dropout, deflected) draw nothing. The
 // vehicle's own disc (footprint_m) is free: the laser cannot see the cells under and behind
-// it, and it stands there.
+// it, and it stands there. A scan counts once per cell: however many of its beams pass
+// through a cell, it is missed once, and hit once (the beams of one scan are one look; a wall's
+// cell that rays graze on its far side, ten beams a scan at 2 m, would otherwise be cleared by
+// the scan that also hits it).
 #include <array>
 #include <cstdint>
 
@@ -72,12 +75,19 @@ class OccupancyGrid {
   // The smallest box holding every cell ever drawn (empty before the first scan).
   const CellBox& drawn() const { return drawn_; }
   uint32_t scans_drawn() const { return scans_drawn_; }
+  // Cells no longer unknown: what the laser has taught the grid (the explorer's progress).
+  uint32_t known_cells() const { return known_cells_; }
 
  private:
   void free_cell(std::size_t i);
   void hit_cell(std::size_t i);
+  // Once per scan each: the bits of this scan's look at cell i.
+  bool first_look(std::size_t i, uint8_t bit);
 
   std::array<uint8_t, kGridCells> cells_{};
+  // This scan's looks: bits 7..2 the scan's tag (1..63), bit 1 hit, bit 0 missed.
+  std::array<uint8_t, kGridCells> looks_{};
+  uint8_t tag_ = 0;
   std::array<int16_t, kMaxBeams> cos_q14_{}, sin_q14_{};
   GridParams params_{};
   GridGeometry geometry_{};
@@ -88,6 +98,7 @@ class OccupancyGrid {
   int footprint_cells_ = 0;
   CellBox drawn_{};
   uint32_t scans_drawn_ = 0;
+  uint32_t known_cells_ = 0;
   bool configured_ = false;
 };
 
