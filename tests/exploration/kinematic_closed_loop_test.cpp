@@ -106,6 +106,7 @@ struct FlightLog {
   double t_east_s = -1, t_inner_s = -1, t_cov90_s = -1, t_finished_s = -1;
   double min_clearance_m = 1e9;
   double distance_m = 0;
+  double finished_x = 0, finished_y = 0;  // where the explorer first said it was done
   int collisions = 0;
   uint32_t restarts = 0;
   std::size_t nodes = 0;
@@ -170,7 +171,11 @@ FlightLog fly(Explorer& ex, double duration_s, uint32_t seed, int stride) {
     if (log.t_east_s < 0 && Building::in_east(x, y)) log.t_east_s = t;
     if (log.t_inner_s < 0 && Building::in_inner(x, y)) log.t_inner_s = t;
     if (log.t_cov90_s < 0 && grid.fraction() >= 0.9) log.t_cov90_s = t;
-    if (log.t_finished_s < 0 && ex.finished()) log.t_finished_s = t;
+    if (log.t_finished_s < 0 && ex.finished()) {
+      log.t_finished_s = t;
+      log.finished_x = x;
+      log.finished_y = y;
+    }
   }
   if (trace) std::fclose(trace);
   log.coverage = grid.fraction();
@@ -274,9 +279,9 @@ TEST(KinematicClosedLoop, SrtAloneExploresWithPositionSetpoints) {
 
 // The grid frontier explorer draws nothing at random: one flight says what it does. It flies
 // to the nearest frontier by path cost until none is left, through the 1.2 m gap and the inner
-// room's door, and then reports the building explored: at 77 s on the host (157 s before a
-// scan counted once per grid cell, when rays grazing the far side of a wall's cells wore them
-// away), so every target flies 300 s.
+// room's door (all of it seen by 77 s on the host; 157 s before a scan counted once per grid
+// cell, when rays grazing the far side of a wall's cells wore them away), flies home on its
+// grid and then reports finished (111 s), so every target flies 300 s.
 TEST(KinematicClosedLoop, FrontierExplorerExploresEverythingAndFinishes) {
   const Scale sc = scale();
   auto ex = std::make_unique<FrontierExplorer>();
@@ -289,6 +294,9 @@ TEST(KinematicClosedLoop, FrontierExplorerExploresEverythingAndFinishes) {
   EXPECT_GE(log.coverage, 0.95);
   EXPECT_GE(log.t_finished_s, 0);
   EXPECT_GT(ex->counters().goals, 3u);
+  EXPECT_EQ(ex->counters().homed, 1u);
+  // Home, the take-off point, within the arrival distance and half a cell's diagonal.
+  EXPECT_LT(std::hypot(log.finished_x - 2.5, log.finished_y - 3.0), 0.39);
 }
 
 }  // namespace

@@ -463,7 +463,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
           {"scans_offered", k.scans_offered}, {"scans_dropped", k.scans_dropped}, {"scans_drawn", k.scans_drawn},
           {"draw_errors", k.draw_errors},     {"plans", k.plans},                 {"plans_dropped", k.plans_dropped},
           {"plans_taken", k.plans_taken},     {"search_failures", k.search_failures}, {"relaxed_plans", k.relaxed_plans},
-          {"grid_restarts", k.grid_restarts},
+          {"grid_restarts", k.grid_restarts}, {"homed", k.homed},
           {"goals", k.goals},
           {"arrivals", k.arrivals},           {"blacklisted", k.blacklisted},     {"stuck", k.stuck},
           {"looked_at", k.looked_at},

@@ -127,6 +127,8 @@ Status FrontierExplorer::plan(const Pose2& pose, const LaserScan& scan, TimeUs n
     if (distance(plan_.path.back(), {pose.x, pose.y}) > arrival) {
       // Facing the way it flies: the laser's blind arc stays behind.
       if (std::hypot(dx, dy) > arrival) heading_target = std::atan2(dy, dx);
+    } else if (plan_.homing) {
+      // Home: level 3 judges it by the pose it is given.
     } else {
       // At the end: face the frontier, so that the laser has looked at it (one behind the
       // vehicle, in the blind arc, is cleared by turning). Arrived once it faces it.
@@ -149,7 +151,7 @@ void FrontierExplorer::reset_level3() {
   grid_ready_ = false;
   clusters_.clear();
   blacklist_count_ = blacklist_next_ = 0;
-  arrived_ = planned_ = goal_active_ = stuck_armed_ = false;
+  arrived_ = planned_ = goal_active_ = stuck_armed_ = homing_ = false;
   seq_ = 0;
   empty_plans_ = 0;
   level3_ = FrontierCounters{};
@@ -171,6 +173,7 @@ void FrontierExplorer::background_step() {
         continue;
       }
       grid_ready_ = true;
+      (void)grid_.geometry().to_cell(work_.pose.x, work_.pose.y, home_cell_);
     }
     if (grid_.draw(work_.scan, work_.pose) != Status::kOk) {
       ++level3_.draw_errors;
@@ -287,6 +290,12 @@ void FrontierExplorer::replan(TimeUs now) {
     return;
   }
   if (!search_frontiers(fp.lethal_m, box, start)) return;
+  if (homing_) {
+    // The relaxed search, if the strict one finds no way home.
+    if (!search_.reached(home_cell_) && fp.relaxed_lethal_m > 0.0f && !search_frontiers(fp.relaxed_lethal_m, box, start)) return;
+    plan_home();
+    return;
+  }
   if (fp.relaxed_lethal_m > 0.0f && fp.relaxed_lethal_m < fp.lethal_m && clusters_.empty()) {
     if (!search_frontiers(fp.relaxed_lethal_m, box, start)) return;
     if (!clusters_.empty()) ++level3_.relaxed_plans;
@@ -321,7 +330,9 @@ void FrontierExplorer::replan(TimeUs now) {
         stuck_armed_ = false;
         ++level3_.grid_restarts;
       } else {
-        finished_.store(true, std::memory_order_release);
+        homing_ = true;
+        plan_home();
+        return;
       }
     }
     publish();
@@ -390,6 +401,27 @@ bool FrontierExplorer::search_frontiers(float lethal_m, const CellBox& box, Cell
   }
   finder_.find(grid_, search_, box, min_cells, {discs.data(), n}, distance_, costs.lethal, clusters_);
   return true;
+}
+
+void FrontierExplorer::plan_home() {
+  outgoing_ = FrontierPlan{};
+  outgoing_.stamp = stamp_;
+  const planning::GridGeometry& geo = grid_.geometry();
+  const Point2 home = geo.centre_of(home_cell_);
+  const bool arrived = arrived_ || distance(home, {pose_.x, pose_.y}) <= params_.guidance.arrival_distance_m;
+  arrived_ = false;
+  if (arrived || search_.path_to(home_cell_, path_cells_) != Status::kOk) {
+    // Home, or no way there on the grid: the mission takes over (its trail home, then landing).
+    finished_.store(true, std::memory_order_release);
+    if (arrived) level3_.homed = 1;
+    publish();
+    return;
+  }
+  outgoing_.has_goal = true;
+  outgoing_.homing = true;
+  outgoing_.frontier = home;
+  (void)planning::simplify_path(grid_, distance_, path_cells_, outgoing_.path, coastal_units());
+  publish();
 }
 
 void FrontierExplorer::publish() {

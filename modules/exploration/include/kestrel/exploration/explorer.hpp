@@ -74,8 +74,8 @@ class Explorer {
   // explorer's grid and planner). Called from one background thread, or in lockstep after each
   // poll in the simulator; step() never waits for it.
   virtual void background_step() {}
-  // Nothing left to explore (the SRT root owns no frontier; no accessible grid frontier);
-  // never for wallfollow.
+  // Nothing left to explore (the SRT root owns no frontier; no accessible grid frontier, and
+  // the frontier explorer home again, or with no way home on its grid); never for wallfollow.
   virtual bool finished() const = 0;
   // The SRT-Star planner (tree, frontiers, waypoint) for introspection; nullptr for wallfollow
   // and frontier.

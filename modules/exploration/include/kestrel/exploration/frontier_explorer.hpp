@@ -3,7 +3,10 @@
 // Yamauchi 1997): the laser draws an occupancy grid; the frontiers between its known free and
 // its unknown cells are the places to go; the nearest accessible one, by the cost of the
 // Dijkstra path to it, is flown to; a goal that sees no progress for a while is blacklisted;
-// when no accessible frontier is left the building is explored and the mission flies home.
+// when no accessible frontier is left the building is explored, and the explorer flies home
+// along the grid's path there (the Dijkstra search from the vehicle reaches home too) and then
+// reports finished; the mission lands it there. With no way home on the grid it reports
+// finished at once, and the mission flies its breadcrumb trail home as for the other explorers.
 // Paper 003 picks the frontier of least Euclidean distance; this one takes the path's cost,
 // which is what the flight costs (a frontier behind a wall is not near).
 //
@@ -41,7 +44,8 @@ struct FrontierPlan {
   uint32_t seq = 0;           // 1, 2, ... per plan published
   TimeUs stamp;               // of the newest scan drawn before it
   bool has_goal = false;      // false: no accessible frontier (the loop hovers)
-  Point2 frontier;            // the frontier cell the flight heads for
+  bool homing = false;        // explored: the goal is home, the path the grid's way there
+  Point2 frontier;            // the frontier cell the flight heads for (home, when homing)
   planning::PathPoints path;  // from the vehicle's cell, ending goal_inset_m short of the frontier
 };
 
@@ -59,6 +63,7 @@ struct FrontierCounters {
   uint32_t search_failures = 0;  // the search's open pool overflowed: no plan that time
   uint32_t relaxed_plans = 0;    // plans that needed the relaxed lethal distance
   uint32_t grid_restarts = 0;    // grids forgotten with inaccessible frontiers left
+  uint32_t homed = 0;            // 1: flew home on the grid before reporting finished
   uint32_t goals = 0;            // frontiers chosen
   uint32_t blacklisted = 0;      // goals given up: no progress, too long, stuck, or reached and still a frontier
   uint32_t stuck = 0;            // ... of those, by the stuck detection
@@ -112,6 +117,8 @@ class FrontierExplorer final : public ExplorerBase {
   bool in_blacklist(const Point2& p) const;
   void add_to_blacklist(const Point2& p);
   void publish();
+  // Explored: the path home, or finished when there is none (or the vehicle is home).
+  void plan_home();
 
   // Level 2 only.
   FrontierPlan plan_{};
@@ -150,6 +157,8 @@ class FrontierExplorer final : public ExplorerBase {
   TimeUs last_plan_{};
   uint32_t seq_ = 0;
   uint8_t empty_plans_ = 0;
+  bool homing_ = false;          // explored: flying home on the grid
+  planning::Cell home_cell_{};   // the grid's centre: the first pose stepped
   // The goal being flown to: its frontier cell, since when, and the best path cost seen.
   bool goal_active_ = false;
   planning::Cell goal_cell_{};
