@@ -10,9 +10,9 @@
 // SLAM when it is enabled: the scan task hands it a matched scan through a one-slot mailbox and
 // applies the correction it hands back at the next scan; neither side ever waits.
 //
-// Memory: everything is inside this object (about 12.4 MiB: the scan matcher's two maps and the
-// SLAM's), which the firmware allocates once at start-up (static storage or one allocation
-// before arming). After start() nothing allocates.
+// Memory: everything is inside this object (about 13.8 MiB: the scan matcher's two maps, the
+// SLAM's and the frontier explorer's grid), which the firmware allocates once at start-up
+// (static storage or one allocation before arming). After start() nothing allocates.
 #include <atomic>
 #include <cstdint>
 

@@ -22,7 +22,7 @@
 // background thread on a board, or in lockstep after every poll in the simulator.
 //
 // The grid is centred on the first pose the explorer is stepped with (the take-off point).
-// Memory: about 1.1 MiB, inside this object (grid, obstacle distance, search costs).
+// Memory: about 1.4 MiB, inside this object (grid, obstacle distance, search costs).
 #include <array>
 #include <atomic>
 #include <span>
