@@ -122,6 +122,27 @@ TEST(FrontierExplorer, WithoutLevel3ItHoldsAndDropsScans) {
   EXPECT_TRUE(r.ex->status().has_target);
 }
 
+// Level 3 stalls after planning (a background thread that stopped): the plan it left is flown
+// for up to 5 s, then the explorer holds on the field alone, counting the holds.
+TEST(FrontierExplorer, AStalePlanIsNotFlown) {
+  Rig r;
+  r.world = room_and_corridor();
+  ASSERT_EQ(r.configure(), Status::kOk);
+  for (int k = 0; k < 5; ++k) ASSERT_EQ(r.step(2.0f, 2.0f, 0.0f), Status::kOk);
+  ASSERT_TRUE(r.ex->status().has_target);
+  for (int k = 0; k < 45; ++k) ASSERT_EQ(r.step(2.0f, 2.0f, 0.0f, /*level3=*/false), Status::kOk);
+  EXPECT_TRUE(r.ex->status().has_target);  // 4.5 s after the last plan
+  EXPECT_EQ(r.ex->counters().stale_holds, 0u);
+  for (int k = 0; k < 10; ++k) ASSERT_EQ(r.step(2.0f, 2.0f, 0.0f, /*level3=*/false), Status::kOk);
+  EXPECT_FALSE(r.ex->status().has_target);
+  EXPECT_EQ(r.ex->status().v_fr, Eigen::Vector2f::Zero());
+  EXPECT_GT(r.ex->counters().stale_holds, 0u);
+  // Level 3 back: it draws the two scans that waited, then a fresh one and plans; the plan
+  // is flown at the step after.
+  for (int k = 0; k < 3; ++k) ASSERT_EQ(r.step(2.0f, 2.0f, 0.0f), Status::kOk);
+  EXPECT_TRUE(r.ex->status().has_target);
+}
+
 // A vehicle that does not move (held by something the grid does not show) gives its goal up
 // after stuck_time_s, blacklists it, and the next goal is elsewhere.
 TEST(FrontierExplorer, AVehicleThatCannotMoveGivesItsGoalUp) {
@@ -237,6 +258,9 @@ TEST(FrontierExplorer, RefusesInconsistentParameters) {
   EXPECT_EQ(r.configure(p), Status::kInvalidArgument);
   p = {};
   p.frontier.soft_m = 40.0f;  // beyond the obstacle distance's 85 cells
+  EXPECT_EQ(r.configure(p), Status::kInvalidArgument);
+  p = {};
+  p.frontier.replan_period_s = 10.0f;  // every plan would be stale before the next
   EXPECT_EQ(r.configure(p), Status::kInvalidArgument);
 }
 

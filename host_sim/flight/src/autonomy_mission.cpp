@@ -465,7 +465,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
           {"plans_taken", k.plans_taken},     {"search_failures", k.search_failures}, {"relaxed_plans", k.relaxed_plans},
           {"grid_restarts", k.grid_restarts}, {"homed", k.homed},
           {"goals", k.goals},
-          {"arrivals", k.arrivals},           {"blacklisted", k.blacklisted},     {"stuck", k.stuck},
+          {"arrivals", k.arrivals},           {"stale_holds", k.stale_holds},     {"blacklisted", k.blacklisted},     {"stuck", k.stuck},
           {"looked_at", k.looked_at},
           {"peak_open", k.peak_open}};
       for (const auto& [name, v] : rows) out.emplace_back(std::string("frontier.") + name, v);

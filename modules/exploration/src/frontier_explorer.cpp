@@ -17,6 +17,8 @@ float distance(const Point2& a, const Point2& b) { return std::hypot(a.x - b.x, 
 constexpr float kFacingRad = 0.35f;
 // Cells the grid must learn for that to count as progress (a metre of corridor's width, say).
 constexpr uint32_t kNewCellsForProgress = 40;
+// Older than this, a plan is not flown (level 3 stalled): replan_period_s is at most 60 s.
+constexpr Duration kMaxPlanAge = Duration::from_ms(5000);
 
 // Metres as path cost (planning::GridSearch: 10 per straight cell).
 uint32_t cost_of(float metres, float cell_m) { return static_cast<uint32_t>(std::lround(metres / cell_m * 10.0f)); }
@@ -47,6 +49,7 @@ FrontierCounters FrontierExplorer::counters() const {
   c.scans_dropped = level2_.scans_dropped;
   c.plans_taken = level2_.plans_taken;
   c.arrivals = level2_.arrivals;
+  c.stale_holds = level2_.stale_holds;
   return c;
 }
 
@@ -116,7 +119,11 @@ Status FrontierExplorer::plan(const Pose2& pose, const LaserScan& scan, TimeUs n
   Eigen::Vector2f v = wall_following_velocity(scan, pose.theta) * fp.field_weight;
   status_.has_target = false;
   status_.v_fr.setZero();
-  if (have_plan_ && plan_.has_goal && !plan_.path.empty()) {
+  // A plan level 3 has not renewed for kMaxPlanAge (it plans at least every replan_period_s)
+  // is not flown: the vehicle holds on the field alone until level 3 is back.
+  const bool fresh = have_plan_ && now - plan_.stamp <= kMaxPlanAge;
+  if (have_plan_ && !fresh) ++level2_.stale_holds;
+  if (fresh && plan_.has_goal && !plan_.path.empty()) {
     const Point2 c = carrot(pose);
     status_.has_target = true;
     status_.target = c;

@@ -78,7 +78,7 @@ Status FrontierParams::validate() const {
                   non_negative(coastal_fraction) && coastal_fraction <= 1.0f && soft_penalty + coastal_penalty <= 60 && non_negative(min_frontier_m) &&
                   non_negative(goal_inset_m) && goal_inset_m <= 5.0f && positive(lookahead_m) && lookahead_m <= 10.0f &&
                   non_negative(field_weight) && field_weight <= 10.0f && non_negative(draw_period_s) &&
-                  draw_period_s <= 10.0f && positive(replan_period_s) && replan_period_s <= 60.0f &&
+                  draw_period_s <= 2.0f && positive(replan_period_s) && replan_period_s <= 2.5f &&
                   positive(progress_m) && positive(patience_s) && positive(goal_time_limit_s) &&
                   non_negative(blacklist_radius_m) && non_negative(goal_match_m) && non_negative(look_distance_m) && looks_to_give_up >= 1 && positive(stuck_radius_m) && positive(stuck_time_s) &&
                   non_negative(switch_margin_m) &&

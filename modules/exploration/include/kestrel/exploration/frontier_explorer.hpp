@@ -55,6 +55,7 @@ struct FrontierCounters {
   uint32_t scans_dropped = 0;  // level 3 had not taken the previous one
   uint32_t plans_taken = 0;
   uint32_t arrivals = 0;
+  uint32_t stale_holds = 0;    // steps that held because level 3's plan was older than 5 s
   // Level 3's (written by background_step()).
   uint32_t scans_drawn = 0;
   uint32_t draw_errors = 0;    // a scan off the grid or of another geometry

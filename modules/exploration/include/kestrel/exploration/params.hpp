@@ -175,7 +175,8 @@ struct FrontierParams {
   float lookahead_m = 1.0f;      // the carrot along the path: K_fr * 1 m is the speed limit
   float field_weight = 1.0f;     // the wall-following field's share of the command (0: none)
   float draw_period_s = 0.1f;    // scans drawn at most this often (the UTM-30LX's 40 Hz: 1 in 4)
-  float replan_period_s = 1.0f;  // planned at least this often, and on arrival
+  float replan_period_s = 1.0f;  // planned at least this often, and on arrival (a plan older
+                                 // than 5 s is not flown: level 3 has stalled)
   float progress_m = 0.5f;       // a goal whose path has not shortened by this within
   float patience_s = 15.0f;      //   this long is blacklisted (paper 003), and so is one
   float goal_time_limit_s = 60.0f;  // not reached within this
