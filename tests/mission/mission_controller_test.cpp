@@ -236,6 +236,29 @@ TEST(MissionController, LandingAfterExploringFliesBoundableVelocitySetPoints) {
   EXPECT_EQ(hover.step().mode, GuidanceSetpoint::Mode::kPosition);
 }
 
+// GIVEN the way home along the trail WHEN the vehicle is home before the trail's end (an
+// explorer that flew home itself: the frontier explorer's grid path) THEN it lands there and
+// does not fly the rest of the trail out and back.
+TEST(MissionController, HomeReachedAnywhereOnTheTrailLands) {
+  MissionRun r;
+  MissionParams p;
+  ExplorerOutput e;
+  ASSERT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 160}, {{0, 0.5f, 0}, 120}}));
+  ASSERT_GT(r.mc.trail().size(), 3u);
+  // Within 0.3 m of home, still moving (as the explorer's own flight home leaves it): the
+  // last leg is to home, and there it lands, without going out along the trail.
+  r.v.nav.position_m.head<2>() = r.mc.home().head<2>() + Eigen::Vector2f(0.25f, 0.0f);
+  r.v.nav.velocity_mps = {0.3f, 0.0f, 0.0f};
+  float farthest = 0;
+  for (int i = 0; i < 400 && r.mc.phase() == Phase::kReturn; ++i) {
+    r.step(&e);
+    farthest = std::max(farthest, (r.v.nav.position_m.head<2>() - r.mc.home().head<2>()).norm());
+  }
+  EXPECT_EQ(r.mc.phase(), Phase::kLand);
+  EXPECT_TRUE(r.mc.returned_home());
+  EXPECT_LT(farthest, 0.35f);
+}
+
 TEST(MissionController, BlockedWayHomeLandsWhereItIs) {
   MissionRun r;
   MissionParams p;

@@ -215,8 +215,12 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         p.z() = alt;
         return p;
       };
-      Eigen::Vector3f target = breadcrumb(return_index_);
       const float pass_radius = std::max(0.3f, params_.arrive_radius_m);
+      // Home, wherever on the trail: an explorer may have brought the vehicle back itself (the
+      // frontier explorer flies its grid's path home), and the rest of the trail would lead
+      // out again. The last leg is to home itself.
+      if ((nav.position_m - home_).head<2>().norm() < pass_radius) return_index_ = 0;
+      Eigen::Vector3f target = breadcrumb(return_index_);
       while (return_index_ > 0 && (nav.position_m - target).head<2>().norm() < pass_radius) {
         --return_index_;
         target = breadcrumb(return_index_);
