@@ -9,6 +9,7 @@
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/core/angle.hpp"
 #include "kestrel/exploration/frontier_explorer.hpp"
+#include "frontier_worlds.hpp"
 #include "synthetic_world.hpp"
 
 namespace kestrel::exploration {
@@ -20,17 +21,7 @@ using test::SegmentWorld;
 
 const LaserModel kUrg = LaserModel::urg04lx();
 
-// A 4 x 4 m room with a 1.2 m door in its east wall to a corridor running north-south.
-SegmentWorld room_and_corridor() {
-  SegmentWorld w;
-  w.add(0, 0, 4, 0);
-  w.add(4, 0, 4, 1.4);
-  w.add(4, 2.6, 4, 4);
-  w.add(4, 4, 0, 4);
-  w.add(0, 4, 0, 0);
-  w.add(6, -8, 6, 12);  // the corridor's far wall
-  return w;
-}
+using test_worlds::room_and_corridor;
 
 struct Rig {
   std::unique_ptr<FrontierExplorer> ex = std::make_unique<FrontierExplorer>();

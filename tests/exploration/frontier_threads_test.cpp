@@ -9,19 +9,13 @@
 #include <vector>
 
 #include "kestrel/exploration/frontier_explorer.hpp"
-#include "synthetic_world.hpp"
+#include "frontier_worlds.hpp"
 
 namespace kestrel::exploration {
 namespace {
 
 TEST(FrontierExplorerThreads, TheLoopAndLevel3ShareOnlyTheirQueues) {
-  test::SegmentWorld w;
-  w.add(0, 0, 4, 0);
-  w.add(4, 0, 4, 1.4);
-  w.add(4, 2.6, 4, 4);
-  w.add(4, 4, 0, 4);
-  w.add(0, 4, 0, 0);
-  w.add(6, -8, 6, 12);
+  const test::SegmentWorld w = test_worlds::room_and_corridor();
   const test::LaserModel urg = test::LaserModel::urg04lx();
   // The scans made beforehand: the loop's thread only steps.
   std::vector<LaserScan> scans;
