@@ -41,7 +41,16 @@ TEST(FrontierExplorerThreads, TheLoopAndLevel3ShareOnlyTheirQueues) {
     EXPECT_EQ(ex->step(test::nav_at(x, 2.0f, 0.02f * static_cast<float>(k)), scans[k], out), Status::kOk);
     with_target += ex->status().has_target ? 1 : 0;
     (void)ex->finished();
-    std::this_thread::yield();
+    // Level 3 plans at its own pace, which under qemu or a loaded machine is far slower than
+    // the loop's steps: once a simulated two seconds the loop waits until level 3 has gone round
+    // twice, so it has drawn what was offered and planned, as a board's scheduler would let it.
+    // The wait ends because level 3 runs until `done`.
+    if (k % 20 == 19) {
+      const uint32_t seen = level3_steps.load(std::memory_order_relaxed);
+      while (level3_steps.load(std::memory_order_relaxed) < seen + 2) std::this_thread::yield();
+    } else {
+      std::this_thread::yield();
+    }
   }
   done.store(true, std::memory_order_release);
   level3.join();
