@@ -17,22 +17,13 @@ using test::kFreeCell;
 using test::kWallCell;
 using test::paint;
 
-struct Planner {
-  std::unique_ptr<OccupancyGrid> grid = blank_grid();
-  std::unique_ptr<ObstacleDistance> distance = std::make_unique<ObstacleDistance>();
-  std::unique_ptr<GridSearch> search = std::make_unique<GridSearch>();
-  CellBox box{100, 100, 200, 200};
-  Status run(Cell start, SearchCosts costs = {}) {
-    distance->compute(*grid, box);
-    return search->run(*grid, *distance, box, start, costs);
-  }
-};
+using Planner = test::SearchRig;
 
 // Without walls or penalties the cost is the octile distance: 10 a straight step, 14 a diagonal.
 TEST(GridSearch, OpenSpaceCostsTheOctileDistance) {
   Planner p;
   paint(*p.grid, 100, 100, 200, 200, kFreeCell);
-  ASSERT_EQ(p.run({150, 150}), Status::kOk);
+  ASSERT_EQ(p.search_from({150, 150}), Status::kOk);
   EXPECT_EQ(p.search->cost(Cell{150, 150}), 0);
   EXPECT_EQ(p.search->cost(Cell{160, 150}), 100);
   EXPECT_EQ(p.search->cost(Cell{160, 160}), 140);
@@ -48,7 +39,7 @@ TEST(GridSearch, WallsAreGoneAroundAndNarrowGapsAreClosed) {
   paint(*p.grid, 150, 100, 150, 200, kWallCell);
   paint(*p.grid, 150, 170, 150, 177, kFreeCell);  // an 8-cell (0.96 m) door
   const SearchCosts costs{8, 8, 0};                // lethal 0.3 m at 12 cm cells
-  ASSERT_EQ(p.run({120, 120}, costs), Status::kOk);
+  ASSERT_EQ(p.search_from({120, 120}, costs), Status::kOk);
   const uint16_t through = p.search->cost(Cell{180, 120});
   ASSERT_NE(through, GridSearch::kUnreached);
   EXPECT_GT(through, 1200);  // straight across would be 600; by the door 2 x (30 x 14 + 21 x 10)
@@ -59,7 +50,7 @@ TEST(GridSearch, WallsAreGoneAroundAndNarrowGapsAreClosed) {
   // A 4-cell (0.48 m) door: closed.
   paint(*p.grid, 150, 170, 150, 177, kWallCell);
   paint(*p.grid, 150, 172, 150, 175, kFreeCell);
-  ASSERT_EQ(p.run({120, 120}, costs), Status::kOk);
+  ASSERT_EQ(p.search_from({120, 120}, costs), Status::kOk);
   EXPECT_EQ(p.search->cost(Cell{180, 120}), GridSearch::kUnreached);
 }
 
@@ -69,7 +60,7 @@ TEST(GridSearch, UnknownCellsAreNotEnteredAndTheStartMayLeaveALethalCell) {
   paint(*p.grid, 110, 100, 110, 200, kWallCell);
   const SearchCosts costs{8, 8, 0};
   // Start one cell from the wall (lethal): it may step away, not along or nearer.
-  ASSERT_EQ(p.run({111, 150}, costs), Status::kOk);
+  ASSERT_EQ(p.search_from({111, 150}, costs), Status::kOk);
   EXPECT_NE(p.search->cost(Cell{125, 150}), GridSearch::kUnreached);
   EXPECT_EQ(p.search->cost(Cell{140, 150}), GridSearch::kUnreached);
   EXPECT_EQ(p.search->cost(Cell{105, 150}), GridSearch::kUnreached);
@@ -80,7 +71,7 @@ TEST(GridSearch, PenaltyKeepsPathsInTheMiddle) {
   Planner p;
   paint(*p.grid, 100, 100, 200, 200, kWallCell);
   paint(*p.grid, 101, 140, 199, 156, kFreeCell);  // a 17-cell (2 m) corridor along x, centre y = 148
-  ASSERT_EQ(p.run({105, 142}, SearchCosts{8, 24, 30}), Status::kOk);
+  ASSERT_EQ(p.search_from({105, 142}, SearchCosts{8, 24, 30}), Status::kOk);
   PathCells path;
   ASSERT_EQ(p.search->path_to({195, 142}, path), Status::kOk);
   const Cell mid = path[path.size() / 2];
@@ -95,11 +86,11 @@ TEST(GridSearch, CoastalPenaltyKeepsPathsNearWalls) {
   paint(*p.grid, 100, 100, 160, 160, kWallCell);
   paint(*p.grid, 101, 101, 159, 159, kFreeCell);  // 59 cells (7 m) across
   const uint8_t far = 24;                         // 8 cells, 0.96 m
-  ASSERT_EQ(p.run({104, 130}, SearchCosts{4, 8, 10, 0, 0}), Status::kOk);
+  ASSERT_EQ(p.search_from({104, 130}, SearchCosts{4, 8, 10, 0, 0}), Status::kOk);
   PathCells straight;
   ASSERT_EQ(p.search->path_to({156, 130}, straight), Status::kOk);
   EXPECT_GE(p.distance->at(straight[straight.size() / 2]), far);  // straight across the middle
-  ASSERT_EQ(p.run({104, 130}, SearchCosts{4, 8, 10, far, 40}), Status::kOk);
+  ASSERT_EQ(p.search_from({104, 130}, SearchCosts{4, 8, 10, far, 40}), Status::kOk);
   PathCells coastal;
   ASSERT_EQ(p.search->path_to({156, 130}, coastal), Status::kOk);
   for (const Cell& c : coastal) EXPECT_LT(p.distance->at(c), far + 3) << c.x << "," << c.y;
@@ -113,15 +104,15 @@ TEST(GridSearch, CoastalPenaltyKeepsPathsNearWalls) {
     ASSERT_TRUE(p.grid->geometry().to_cell(legs[i].x, legs[i].y, b));
     EXPECT_TRUE(line_clear(*p.grid, *p.distance, a, b, 0, far + 3)) << "leg " << i;
   }
-  EXPECT_EQ(p.run({104, 130}, SearchCosts{4, 8, 10, 8, 40}), Status::kInvalidArgument);   // far inside soft
-  EXPECT_EQ(p.run({104, 130}, SearchCosts{4, 8, 30, 24, 40}), Status::kInvalidArgument);  // penalties over 60
+  EXPECT_EQ(p.search_from({104, 130}, SearchCosts{4, 8, 10, 8, 40}), Status::kInvalidArgument);   // far inside soft
+  EXPECT_EQ(p.search_from({104, 130}, SearchCosts{4, 8, 30, 24, 40}), Status::kInvalidArgument);  // penalties over 60
 }
 
 TEST(GridSearch, PathsRunFromTheStartToTheGoalInNeighbouringCells) {
   Planner p;
   paint(*p.grid, 100, 100, 200, 200, kFreeCell);
   paint(*p.grid, 140, 110, 142, 190, kWallCell);
-  ASSERT_EQ(p.run({120, 150}, SearchCosts{4, 12, 20}), Status::kOk);
+  ASSERT_EQ(p.search_from({120, 150}, SearchCosts{4, 12, 20}), Status::kOk);
   PathCells path;
   ASSERT_EQ(p.search->path_to({170, 150}, path), Status::kOk);
   ASSERT_GE(path.size(), 2u);
@@ -138,9 +129,9 @@ TEST(GridSearch, PathsRunFromTheStartToTheGoalInNeighbouringCells) {
 TEST(GridSearch, BadCostsAndStartsAreRefused) {
   Planner p;
   paint(*p.grid, 100, 100, 200, 200, kFreeCell);
-  EXPECT_EQ(p.run({150, 150}, SearchCosts{10, 5, 0}), Status::kInvalidArgument);
-  EXPECT_EQ(p.run({150, 150}, SearchCosts{5, 10, 61}), Status::kInvalidArgument);
-  EXPECT_EQ(p.run({50, 150}), Status::kOutOfRange);
+  EXPECT_EQ(p.search_from({150, 150}, SearchCosts{10, 5, 0}), Status::kInvalidArgument);
+  EXPECT_EQ(p.search_from({150, 150}, SearchCosts{5, 10, 61}), Status::kInvalidArgument);
+  EXPECT_EQ(p.search_from({50, 150}), Status::kOutOfRange);
   EXPECT_EQ(p.search->cost(Cell{150, 150}), GridSearch::kUnreached);
 }
 

@@ -14,16 +14,11 @@ using test::kFreeCell;
 using test::kWallCell;
 using test::paint;
 
-struct Fixture {
-  std::unique_ptr<OccupancyGrid> grid = blank_grid();
-  std::unique_ptr<ObstacleDistance> distance = std::make_unique<ObstacleDistance>();
-  std::unique_ptr<GridSearch> search = std::make_unique<GridSearch>();
+struct Fixture : test::SearchRig {
   PathCells cells;
   PathPoints points;
-  CellBox box{100, 100, 200, 200};
   Status plan(Cell from, Cell to) {
-    distance->compute(*grid, box);
-    if (Status s = search->run(*grid, *distance, box, from, SearchCosts{4, 12, 20}); s != Status::kOk) return s;
+    if (Status s = search_from(from, SearchCosts{4, 12, 20}); s != Status::kOk) return s;
     if (Status s = search->path_to(to, cells); s != Status::kOk) return s;
     return simplify_path(*grid, *distance, cells, points);
   }
