@@ -120,6 +120,12 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "on"}}}, mem), "");
   EXPECT_TRUE(mem.stack.explorer.srt.prefer_unvisited);
   EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "yes"}}}, mem), "");
+  // A run-out retracing the path flown.
+  FlightOptions retrace;
+  EXPECT_FALSE(retrace.stack.explorer.srt.retrace);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "on"}}}, retrace), "");
+  EXPECT_TRUE(retrace.stack.explorer.srt.retrace);
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "1"}}}, retrace), "");
   // Frontiers kept beside walls.
   FlightOptions rescue;
   EXPECT_FALSE(rescue.stack.explorer.srt.rescue_frontiers);

@@ -110,6 +110,7 @@ bool* explorer_switch(const std::string& key, exploration::Params& p) {
   if (key == "srt_memory") return &p.srt.prefer_unvisited;
   if (key == "srt_rescue") return &p.srt.rescue_frontiers;
   if (key == "srt_beam_jumps") return &p.srt.discontinuity_needs_beam_jump;
+  if (key == "srt_retrace") return &p.srt.retrace;
   return nullptr;
 }
 
@@ -455,6 +456,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
       out.emplace_back("srt_frontiers_handed_up", e->planner()->frontiers_handed_up());
       out.emplace_back("srt_steer_pauses", e->planner()->steer_pauses());
       out.emplace_back("srt_look_backs", e->planner()->look_backs());
+      out.emplace_back("srt_retraces", e->planner()->retraces());
     }
     if (e->kind() == exploration::ExplorerKind::kFrontier) {
       const auto& f = static_cast<const exploration::FrontierExplorer&>(*e);

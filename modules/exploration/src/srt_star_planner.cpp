@@ -13,6 +13,10 @@ namespace kestrel::exploration {
 namespace {
 // Coming this much nearer the waypoint is progress (blocked arrivals).
 constexpr float kProgressM = 0.05f;
+
+Point2 trail_point(const FlownHistory& trail, std::size_t i) { return trail.point(i); }
+
+float apart(Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 // Ancestors a frontier with no path from its node is offered to, nearest first: enough to
 // leave a doorway (the parent or grandparent in practice), and a bounded cost in one slice.
 constexpr int kHandUpLevels = 8;
@@ -30,6 +34,8 @@ const char* to_string(PlannerMode m) {
       return "backtrack";
     case PlannerMode::kLookBack:
       return "look_back";
+    case PlannerMode::kRetrace:
+      return "retrace";
     case PlannerMode::kFinished:
       return "finished";
   }
@@ -46,6 +52,8 @@ const char* to_string(RestartReason r) {
       return "tree_full";
     case RestartReason::kExhausted:
       return "exhausted";
+    case RestartReason::kRetraced:
+      return "retraced";
   }
   return "unknown";
 }
@@ -134,6 +142,11 @@ void SrtStarPlanner::reset() {
   looked_back_ = false;
   look_heading_ = 0;
   look_backs_ = 0;
+  trail_.clear();
+  trail_scanned_ = false;
+  trail_next_ = trail_best_ = 0;
+  unflown_best_ = unflown_here_ = 0;
+  retraces_ = 0;
   step_ = Step::kNone;
   last_work_ = 0;
 }
@@ -159,6 +172,8 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
   // Not while an arrival step is worked on: its result must not depend on the poses given
   // meanwhile (sliced and one-shot steps agree), and the vehicle waits on the spot.
   if (step_ == Step::kNone) visited_.mark({pose.x, pose.y});
+  // The trail keeps its indices while the vehicle flies back along it.
+  if (srt_.retrace && step_ == Step::kNone && mode_ != PlannerMode::kRetrace) trail_.record({pose.x, pose.y});
 
   if (step_ != Step::kNone) {
     // An arrival step is under way: this call only continues it.
@@ -179,12 +194,22 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     // while, it has arrived as closely as the walls allow.
     const bool blocked = dist < guidance_.blocked_arrival_distance_m &&
                          (now - closest_at_).seconds() > static_cast<double>(guidance_.blocked_time_s);
-    const bool arrived = dist < radius || blocked;
+    const bool arrived = dist < radius || blocked ||
+                         (mode_ == PlannerMode::kRetrace && trail_next_ > trail_best_ && dist < kRetraceArrivalM);
     if (blocked && dist >= radius && mode_ != PlannerMode::kFinished && mode_ != PlannerMode::kLookBack)
       ++blocked_arrivals_;
     const bool late = (now - waypoint_time_).seconds() > static_cast<double>(guidance_.waypoint_time_limit_s);
     if (mode_ == PlannerMode::kFinished) {
       // Stays on the root; nothing left to explore.
+    } else if (mode_ == PlannerMode::kRetrace && (arrived || late)) {
+      if (late) {
+        restart_tree(RestartReason::kTimeout);
+        if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
+      } else if (Status st = advance_retrace(pose, scan, now); st != Status::kOk) {
+        return st;
+      }
+    } else if (mode_ == PlannerMode::kRetrace) {
+      // On the way back along the trail.
     } else if (mode_ == PlannerMode::kLookBack) {
       if (std::fabs(angle_diff(pose.theta, look_heading_)) < kLookedBackRad) {
         restart_tree(RestartReason::kExhausted);
@@ -203,6 +228,7 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
       start_choose(pose, scan);
     } else if (arrived) {
       steer_paused_ = false;
+      trail_scanned_ = false;
       if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
     } else if (late) {
       if (mode_ == PlannerMode::kForward) {
@@ -309,6 +335,9 @@ void SrtStarPlanner::work_on_arrival(TimeUs now) {
         break;
       case Step::kPath:
         used += check_path(budget - used, now);
+        break;
+      case Step::kTrailScan:
+        used += scan_trail(now);
         break;
       case Step::kNone:
         break;
@@ -524,6 +553,68 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
     step_ = Step::kNone;
     return 1;
   }
+  if (srt_.retrace && !trail_scanned_ && trail_.size() > kRetraceStride) {
+    // Where else on the path flown is there more the vehicle has not flown? Counted point by
+    // point (scan_trail); what the root's frontiers would do comes after.
+    trail_scanned_ = true;
+    trail_next_ = trail_.size() - 1;
+    trail_best_ = trail_next_;
+    unflown_best_ = 0;
+    step_ = Step::kTrailScan;
+    const uint32_t used = bearings_.count(visited_, {job_pose_.x, job_pose_.y});
+    unflown_here_ = bearings_.total();
+    bearings_counted_ = false;
+    return used;
+  }
+  return run_out_on_root(now);
+}
+
+uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
+  if (trail_next_ >= kRetraceStride) {
+    trail_next_ -= kRetraceStride;
+    const uint32_t used = bearings_.count(visited_, trail_point(trail_, trail_next_));
+    if (bearings_.total() > unflown_best_) {
+      unflown_best_ = bearings_.total();
+      trail_best_ = trail_next_;
+    }
+    return used;
+  }
+  bearings_counted_ = false;
+  const bool worth_it = unflown_best_ >= kRetraceMinUnflown && 4 * unflown_best_ >= kRetraceGainQuarters * unflown_here_ &&
+                        apart({job_pose_.x, job_pose_.y}, trail_point(trail_, trail_best_)) >= kRetraceStepM;
+  if (!worth_it) return run_out_on_root(now);
+  // Back along the trail: from the newest point, the first kRetraceStepM from the vehicle.
+  ++retraces_;
+  mode_ = PlannerMode::kRetrace;
+  target_node_ = kNoNode;
+  trail_next_ = trail_.size() - 1;
+  const Point2 from{job_pose_.x, job_pose_.y};
+  while (trail_next_ > trail_best_ &&
+         apart(from, trail_point(trail_, trail_next_)) < kRetraceStepM)
+    --trail_next_;
+  set_waypoint(trail_point(trail_, trail_next_), now);
+  step_ = Step::kNone;
+  return 1;
+}
+
+Status SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now) {
+  if (trail_next_ <= trail_best_) {
+    // There: what was recorded after it is not the way the vehicle is now, and a fresh tree
+    // grows here.
+    trail_.keep_first(trail_best_ + 1);
+    restart_tree(RestartReason::kRetraced);
+    return start_grow(pose, scan);
+  }
+  // A loop back to here is not flown again: on from the earliest visit of this place.
+  const Point2 at = trail_point(trail_, trail_next_);
+  trail_next_ = trail_.earliest_near(trail_best_, trail_next_, at, kRetraceLoopM);
+  while (trail_next_ > trail_best_ && apart(at, trail_point(trail_, trail_next_)) < kRetraceStepM) --trail_next_;
+  set_waypoint(trail_point(trail_, trail_next_), now);
+  return Status::kOk;
+}
+
+uint32_t SrtStarPlanner::run_out_on_root(TimeUs now) {
+  const SrtNode& node = tree_.nodes()[current_];
   // Running out of frontiers says less than it seems. Section V's restarts erase the tree: a
   // tree grown since knows only the rooms it has seen (gt-building, 30 minutes, UTM-30LX: two
   // of ten flights flew home from the north-east room with four rooms never entered). And the

@@ -92,6 +92,10 @@ struct SrtParams {
                                           // return it starts within the clearance of, and an open
                                           // sector's frontier with no path from its node goes to
                                           // an ancestor (srt_star_planner.hpp; not in paper 002)
+  bool retrace = false;                   // a tree that runs out with little unflown in reach
+                                          // first flies back along the path it came by to
+                                          // where more is (srt_star_planner.hpp; not in
+                                          // paper 002)
   SteerUnflown steer = SteerUnflown::kAfterRestart;  // which draws face the building not yet
                                                     // flown (unflown_bearings.hpp; not in
                                                     // paper 002, whose draws kNever makes)

@@ -37,6 +37,21 @@
 // waypoint is reached. Poses given while an arrival step is under way are not remembered as
 // flown.
 //
+// With srt.retrace, a tree that runs out on its root first looks along the path flown
+// (FlownHistory, recorded from the poses given, loops kept):
+// UnflownBearings counted at every kRetraceStride-th trail point, from the newest back, as work
+// items of the arrival step. If the most unflown cells any trail point has in reach are at least
+// kRetraceGain times those where the vehicle is, and at least kRetraceMinUnflown, the vehicle
+// flies back along the trail (kRetrace: trail points kRetraceStepM apart, each arrived at
+// within kRetraceArrivalM, the last within d; a loop is skipped where an earlier point lies
+// within kRetraceLoopM of the one reached) and a fresh tree (steered, as any after a restart)
+// grows where it ends; the trail is cut back to there. Else, or once per run-out until
+// a forward waypoint is reached, the run-out goes on as above. The trail is not recorded while
+// retracing; the time limit during a retrace restarts exploration where the vehicle is, as for
+// any waypoint. Paper 002 has no memory across its restarts: seed 1 of gt-building's URG-04LX
+// flights restarted 11 times in the building's east half, its west rooms never entered
+// (EXPERIMENTS.md).
+//
 // Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
 // and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
 // past never traps the planner). With srt.rescue_frontiers, frontiers are not lost beside
@@ -70,6 +85,7 @@
 #include "kestrel/exploration/srt_star_tree.hpp"
 #include "kestrel/exploration/unflown_bearings.hpp"
 #include "kestrel/exploration/visited_grid.hpp"
+#include "kestrel/exploration/flown_history.hpp"
 
 namespace kestrel::exploration {
 
@@ -78,14 +94,16 @@ enum class PlannerMode : uint8_t {
   kForward,    // heading for a new waypoint drawn in a frontier sector
   kBacktrack,  // heading back to the parent node
   kLookBack,   // turning on the spot to face the laser's blind arc before a last fresh tree
+  kRetrace,    // flying back along the path flown to where a fresh tree is to grow
   kFinished,   // the root owns no frontier: waypoint is the root
 };
 const char* to_string(PlannerMode m);
 
 // kExhausted: a tree ran out of frontiers, and exploration started once more from where the
-// vehicle is (backtrack_or_finish says when).
-enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull, kExhausted };
-inline constexpr std::size_t kRestartReasonCount = static_cast<std::size_t>(RestartReason::kExhausted) + 1;
+// vehicle is (backtrack_or_finish says when); kRetraced: it started once more where a retrace
+// along the path flown ended.
+enum class RestartReason : uint8_t { kNone, kTimeout, kTreeFull, kExhausted, kRetraced };
+inline constexpr std::size_t kRestartReasonCount = static_cast<std::size_t>(RestartReason::kRetraced) + 1;
 const char* to_string(RestartReason r);
 
 // Index (into tree.frontiers()) of one of `node`'s `live` frontiers, drawn at random: with a
@@ -142,11 +160,20 @@ class SrtStarPlanner {
   uint32_t steer_pauses() const { return steer_pauses_; }
   bool steer_paused() const { return steer_paused_; }
   uint32_t steered_draws() const { return steered_draws_; }  // frontiers drawn by steering
+  uint32_t retraces() const { return retraces_; }            // retraces begun (srt.retrace)
+  const FlownHistory& trail() const { return trail_; }
+
+  static constexpr std::size_t kRetraceStride = 4;       // trail points between two counts
+  static constexpr uint32_t kRetraceGainQuarters = 5;    // the best point against where it is
+  static constexpr uint32_t kRetraceMinUnflown = 64;     // weighted cells (unflown_bearings.hpp)
+  static constexpr float kRetraceStepM = 2.0f;
+  static constexpr float kRetraceArrivalM = 0.8f;
+  static constexpr float kRetraceLoopM = 0.75f;  // an earlier point this near is the same place
   TimeUs waypoint_time() const { return waypoint_time_; }
   const VisitedGrid& visited() const { return visited_; }  // where the vehicle has flown
 
  private:
-  enum class Step : uint8_t { kNone, kSectors, kTree, kPick, kDraw, kPath };
+  enum class Step : uint8_t { kNone, kSectors, kTree, kPick, kDraw, kPath, kTrailScan };
   // Starts the arrival step's slices on a copy of (pose, scan).
   Status start_grow(const Pose2& pose, const LaserScan& scan);
   void start_choose(const Pose2& pose, const LaserScan& scan);
@@ -167,6 +194,12 @@ class SrtStarPlanner {
   // or is dropped. Returns the work units spent.
   uint32_t hand_up_or_drop(std::size_t i);
   uint32_t backtrack_or_finish(TimeUs now);
+  // The root ran out: starts once more, looks back, or finishes (after any retrace).
+  uint32_t run_out_on_root(TimeUs now);
+  // srt.retrace: counts the next trail point; when the trail is done, retraces or runs out.
+  uint32_t scan_trail(TimeUs now);
+  // Flying back along the trail: the next trail point kRetraceStepM on, or the fresh tree.
+  Status advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now);
   // The straight path from the arrival pose to `p` against the returns of the arrival scan.
   uint32_t start_path(Point2 p, bool backtrack);
   uint32_t check_path(uint32_t budget, TimeUs now);
@@ -214,6 +247,13 @@ class SrtStarPlanner {
   bool looked_back_ = false;  // since the last kTimeout or kTreeFull restart (or the start)
   float look_heading_ = 0;    // kLookBack: the heading to turn to
   uint32_t look_backs_ = 0;
+  FlownHistory trail_;  // srt.retrace: the path flown, in order
+  bool trail_scanned_ = false;  // since the last forward arrival: a run-out looks only once
+  std::size_t trail_next_ = 0;  // the trail scan's next point (counting down), or the
+                                // retrace's current trail point
+  std::size_t trail_best_ = 0;  // the trail point with the most unflown cells in reach
+  uint32_t unflown_best_ = 0, unflown_here_ = 0;
+  uint32_t retraces_ = 0;
 
   // The arrival step in progress.
   Step step_ = Step::kNone;

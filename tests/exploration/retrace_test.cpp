@@ -1,0 +1,173 @@
+// srt.retrace: the path flown, loops kept (flown_history.hpp), and a tree that runs out where
+// nothing is left unflown flying back along it to where more is (srt_star_planner.hpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "kestrel/exploration/flown_history.hpp"
+#include "kestrel/exploration/srt_star_planner.hpp"
+#include "synthetic_world.hpp"
+
+namespace kestrel::exploration {
+namespace {
+
+using test::LaserModel;
+using test::uniform_scan;
+
+const LaserModel kUrg = LaserModel::urg04lx();
+
+TEST(FlownHistory, KeepsPointsASpacingApartInTheOrderFlown) {
+  FlownHistory h;
+  for (int i = 0; i <= 100; ++i) h.record({0.1f * static_cast<float>(i), 0});  // 10 m east
+  ASSERT_EQ(h.size(), 11u);
+  for (std::size_t i = 0; i < h.size(); ++i) EXPECT_NEAR(h.point(i).x, static_cast<float>(i), 1e-4f);
+  // Back the same way: a loop is kept, unlike the mission's breadcrumb trail.
+  for (int i = 99; i >= 0; --i) h.record({0.1f * static_cast<float>(i), 0});
+  EXPECT_EQ(h.size(), 21u);
+  EXPECT_NEAR(h.point(20).x, 0.0f, 1e-4f);
+  h.record({NAN, 0});
+  h.record({0, INFINITY});
+  EXPECT_EQ(h.size(), 21u);
+}
+
+TEST(FlownHistory, WhenFullEveryOtherPointGoesTheNewestStaysAndTheSpacingDoubles) {
+  FlownHistory h;
+  for (std::size_t i = 0; i < FlownHistory::kCapacity; ++i) h.record({static_cast<float>(i), 0});
+  ASSERT_EQ(h.size(), FlownHistory::kCapacity);
+  h.record({static_cast<float>(FlownHistory::kCapacity) + 1.0f, 0});
+  EXPECT_FLOAT_EQ(h.spacing_m(), 2.0f);
+  EXPECT_EQ(h.size(), FlownHistory::kCapacity / 2 + 2);
+  EXPECT_FLOAT_EQ(h.point(0).x, 0.0f);
+  EXPECT_FLOAT_EQ(h.point(1).x, 2.0f);
+  EXPECT_FLOAT_EQ(h.point(h.size() - 2).x, static_cast<float>(FlownHistory::kCapacity - 1));
+  EXPECT_FLOAT_EQ(h.point(h.size() - 1).x, static_cast<float>(FlownHistory::kCapacity) + 1.0f);
+}
+
+TEST(FlownHistory, FindsTheEarliestVisitOfAPlaceAndCutsBackToAPoint) {
+  FlownHistory h;
+  const Point2 path[] = {{0, 0}, {1, 0}, {2, 0}, {2, 1}, {1, 1}, {1, -0.1f}, {1, -1.2f}};
+  for (const Point2& p : path) h.record(p);
+  ASSERT_EQ(h.size(), 7u);
+  EXPECT_EQ(h.earliest_near(0, 5, h.point(5), 0.5f), 1u);  // (1, -0.1) is where (1, 0) was
+  EXPECT_EQ(h.earliest_near(2, 5, h.point(5), 0.5f), 5u);  // not after index 2: itself
+  EXPECT_EQ(h.earliest_near(0, 6, {9, 9}, 0.5f), 6u);      // nowhere near: the last
+  h.keep_first(3);
+  EXPECT_EQ(h.size(), 3u);
+  EXPECT_FLOAT_EQ(h.point(2).x, 2.0f);
+}
+
+// The flight the vehicle is given, 0.25 m a pose: east along y = 0 to x = 22, a narrow loop
+// north (to y = 8, back down at x = 20 to y = 0.4, every cell of it flown), east again to
+// x = 26, then a lawn-mower over x 26..38, y 0.4..10 with lines 2 m apart, so that where it
+// ends everything in reach is flown while the rooms beside the start (y 2..10, x under 19) are
+// not.
+std::vector<Point2> flight_out() {
+  std::vector<Point2> corners = {{0, 0}, {22, 0}, {22, 8}, {20, 8}, {20, 0.4f}, {26, 0.4f}};
+  for (int line = 0; line <= 6; ++line) {
+    const float x = 26.0f + 2.0f * static_cast<float>(line);
+    const bool up = line % 2 == 0;
+    if (line > 0) corners.push_back({x, up ? 0.4f : 10.0f});
+    corners.push_back({x, up ? 10.0f : 0.4f});
+  }
+  std::vector<Point2> poses;
+  for (std::size_t c = 0; c + 1 < corners.size(); ++c) {
+    const Point2 a = corners[c], b = corners[c + 1];
+    const int steps = static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / 0.25f));
+    for (int k = 0; k < steps; ++k) {
+      const float f = static_cast<float>(k) / static_cast<float>(steps);
+      poses.push_back({a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)});
+    }
+  }
+  poses.push_back(corners.back());
+  return poses;
+}
+
+struct RetraceFlight {
+  std::unique_ptr<SrtStarPlanner> planner = std::make_unique<SrtStarPlanner>();
+  std::vector<Point2> waypoints;  // issued while retracing
+  Pose2 end{};
+};
+
+// The root at the start sees open space only to the west (behind the flight, so no waypoint
+// is ever reached on the way out); the flight out runs past the time limit, and the fresh tree
+// at its end is grown from a scan with walls 1 m away all round: it runs out at once. Then
+// the vehicle is put on each waypoint in turn.
+RetraceFlight fly(bool retrace) {
+  RetraceFlight r;
+  SrtParams srt;
+  srt.arrival_work_per_cycle = 0;
+  srt.retrace = retrace;
+  GuidanceParams g;
+  g.waypoint_time_limit_s = 1000.0f;
+  EXPECT_EQ(r.planner->configure(srt, g), Status::kOk);
+  LaserScan west_open = uniform_scan(kUrg, 1000);
+  for (int i = 0; i < west_open.beam_count; ++i)
+    if (std::fabs(west_open.angle_of(i)) < 0.6) west_open.range_mm[i] = range_code::kNoReturn;
+  const LaserScan enclosed = uniform_scan(kUrg, 1000);
+  const float west = static_cast<float>(M_PI);
+  bool fresh = false;
+  EXPECT_EQ(r.planner->update({0, 0, west}, west_open, TimeUs{}, fresh), Status::kOk);
+  EXPECT_EQ(r.planner->mode(), PlannerMode::kForward);
+  EXPECT_LT(r.planner->waypoint().x, -0.3f);
+  TimeUs t{};
+  for (const Point2& p : flight_out()) {
+    t += Duration::from_ms(100);
+    EXPECT_EQ(r.planner->update({p.x, p.y, 0}, enclosed, t, fresh), Status::kOk);
+    EXPECT_FALSE(fresh);
+  }
+  EXPECT_EQ(r.planner->restarts(), 0u);
+  const Point2 last = flight_out().back();
+  r.end = {last.x, last.y, 0};
+  t = TimeUs::from_s(1001);
+  EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
+  EXPECT_EQ(r.planner->restarts(RestartReason::kTimeout), 1u);
+  for (int k = 0; k < 300 && r.planner->mode() == PlannerMode::kRetrace; ++k) {
+    r.waypoints.push_back(r.planner->waypoint());
+    const Point2 w = r.planner->waypoint();
+    r.end = {w.x, w.y, 0};
+    t += Duration::from_s(1);
+    EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
+  }
+  return r;
+}
+
+TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsSkippingTheLoop) {
+  const RetraceFlight r = fly(true);
+  EXPECT_EQ(r.planner->retraces(), 1u);
+  ASSERT_GE(r.waypoints.size(), 10u);
+  EXPECT_NE(r.planner->mode(), PlannerMode::kRetrace);
+  EXPECT_EQ(r.planner->restarts(RestartReason::kRetraced), 1u);
+  // Every waypoint is a point of the flight out, 2 m or so from the one before; the loop
+  // north (y over 1.5 m between x 20 and 22) is not flown again.
+  const std::vector<Point2> out = flight_out();
+  Point2 before{r.waypoints.front()};
+  for (const Point2& w : r.waypoints) {
+    float nearest = 1e9f;
+    for (const Point2& p : out) nearest = std::min(nearest, std::hypot(p.x - w.x, p.y - w.y));
+    EXPECT_LT(nearest, 0.3f) << w.x << ", " << w.y;
+    EXPECT_FALSE(w.x > 19.5f && w.x < 22.5f && w.y > 1.5f) << "the loop again at " << w.x << ", " << w.y;
+    EXPECT_LT(std::hypot(w.x - before.x, w.y - before.y), 2.0f * FlownHistory::kSpacingM + 2.0f);
+    before = w;
+  }
+  // It ended beside the unflown rooms, on the first leg of the flight, where the fresh trees
+  // grew (each ran out against the walls of the scans given: once more, then the look back).
+  EXPECT_LT(r.end.x, 19.0f);
+  EXPECT_NEAR(r.end.y, 0.0f, 0.3f);
+  ASSERT_FALSE(r.planner->tree().nodes().empty());
+  EXPECT_NEAR(r.planner->tree().nodes()[0].position.x, r.end.x, 1e-4f);
+  EXPECT_LE(r.planner->trail().size(), 20u);  // cut back to where the retrace ended
+}
+
+TEST(SrtStarPlannerRetrace, OffTheRunOutGoesOnWhereTheVehicleIs) {
+  const RetraceFlight r = fly(false);
+  EXPECT_EQ(r.planner->retraces(), 0u);
+  EXPECT_TRUE(r.waypoints.empty());
+  EXPECT_EQ(r.planner->restarts(RestartReason::kRetraced), 0u);
+  EXPECT_EQ(r.planner->mode(), PlannerMode::kLookBack);
+  EXPECT_FLOAT_EQ(r.planner->waypoint().x, 38.0f);
+}
+
+}  // namespace
+}  // namespace kestrel::exploration
