@@ -94,7 +94,7 @@ struct RetraceFlight {
 // is ever reached on the way out); the flight out runs past the time limit, and the fresh tree
 // at its end is grown from a scan with walls 1 m away all round: it runs out at once. Then
 // the vehicle is put on each waypoint in turn.
-RetraceFlight fly(bool retrace) {
+RetraceFlight fly(bool retrace, int retrace_legs = 300) {
   RetraceFlight r;
   SrtParams srt;
   srt.arrival_work_per_cycle = 0;
@@ -123,7 +123,7 @@ RetraceFlight fly(bool retrace) {
   t = TimeUs::from_s(1001);
   EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
   EXPECT_EQ(r.planner->restarts(RestartReason::kTimeout), 1u);
-  for (int k = 0; k < 300 && r.planner->mode() == PlannerMode::kRetrace; ++k) {
+  for (int k = 0; k < retrace_legs && r.planner->mode() == PlannerMode::kRetrace; ++k) {
     r.waypoints.push_back(r.planner->waypoint());
     const Point2 w = r.planner->waypoint();
     r.end = {w.x, w.y, 0};
@@ -158,6 +158,27 @@ TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsS
   ASSERT_FALSE(r.planner->tree().nodes().empty());
   EXPECT_NEAR(r.planner->tree().nodes()[0].position.x, r.end.x, 1e-4f);
   EXPECT_LE(r.planner->trail().size(), 20u);  // cut back to where the retrace ended
+}
+
+// Held on a leg of the way back until the time limit: exploration restarts where the vehicle
+// is, and the path flown ends there too, not where the retrace began (a later retrace would
+// fly the jump between them).
+TEST(SrtStarPlannerRetrace, TheTimeLimitOnTheWayBackCutsTheHistoryToWhereTheVehicleIs) {
+  RetraceFlight r = fly(true, 5);
+  ASSERT_EQ(r.planner->mode(), PlannerMode::kRetrace);
+  const std::size_t before = r.planner->trail().size();
+  // Stuck half-way to the next waypoint.
+  const Point2 w = r.planner->waypoint();
+  const Pose2 stuck{0.5f * (r.end.x + w.x), 0.5f * (r.end.y + w.y), 0};
+  bool fresh = false;
+  const TimeUs late = r.planner->waypoint_time() + Duration::from_s(1001);
+  ASSERT_EQ(r.planner->update(stuck, uniform_scan(kUrg, 1000), late, fresh), Status::kOk);
+  EXPECT_NE(r.planner->mode(), PlannerMode::kRetrace);
+  EXPECT_EQ(r.planner->restarts(RestartReason::kTimeout), 2u);
+  const FlownHistory& h = r.planner->trail();
+  ASSERT_LT(h.size(), before);
+  const Point2 last = h.point(h.size() - 1);
+  EXPECT_LT(std::hypot(last.x - stuck.x, last.y - stuck.y), 2.0f * SrtStarPlanner::kRetraceStepM);
 }
 
 TEST(SrtStarPlannerRetrace, OffTheRunOutGoesOnWhereTheVehicleIs) {

@@ -144,7 +144,7 @@ void SrtStarPlanner::reset() {
   look_backs_ = 0;
   trail_.clear();
   trail_scanned_ = false;
-  trail_next_ = trail_best_ = 0;
+  trail_next_ = trail_best_ = trail_reached_ = 0;
   unflown_best_ = unflown_here_ = 0;
   retraces_ = 0;
   step_ = Step::kNone;
@@ -203,6 +203,8 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
       // Stays on the root; nothing left to explore.
     } else if (mode_ == PlannerMode::kRetrace && (arrived || late)) {
       if (late) {
+        // The history must end where the vehicle is, or the next retrace would fly the jump.
+        trail_.keep_first(trail_reached_ + 1);
         restart_tree(RestartReason::kTimeout);
         if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
       } else if (Status st = advance_retrace(pose, scan, now); st != Status::kOk) {
@@ -587,7 +589,7 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   ++retraces_;
   mode_ = PlannerMode::kRetrace;
   target_node_ = kNoNode;
-  trail_next_ = trail_.size() - 1;
+  trail_next_ = trail_reached_ = trail_.size() - 1;
   const Point2 from{job_pose_.x, job_pose_.y};
   while (trail_next_ > trail_best_ &&
          apart(from, trail_point(trail_, trail_next_)) < kRetraceStepM)
@@ -607,7 +609,7 @@ Status SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan,
   }
   // A loop back to here is not flown again: on from the earliest visit of this place.
   const Point2 at = trail_point(trail_, trail_next_);
-  trail_next_ = trail_.earliest_near(trail_best_, trail_next_, at, kRetraceLoopM);
+  trail_next_ = trail_reached_ = trail_.earliest_near(trail_best_, trail_next_, at, kRetraceLoopM);
   while (trail_next_ > trail_best_ && apart(at, trail_point(trail_, trail_next_)) < kRetraceStepM) --trail_next_;
   set_waypoint(trail_point(trail_, trail_next_), now);
   return Status::kOk;

@@ -45,7 +45,8 @@
 // flies back along the trail (kRetrace: trail points kRetraceStepM apart, each arrived at
 // within kRetraceArrivalM, the last within d; a loop is skipped where an earlier point lies
 // within kRetraceLoopM of the one reached) and a fresh tree (steered, as any after a restart)
-// grows where it ends; the trail is cut back to there. Else, or once per run-out until
+// grows where it ends; the trail is cut back to there (or, when the time limit ends the
+// retrace, to the point last reached). Else, or once per run-out until
 // a forward waypoint is reached, the run-out goes on as above. The trail is not recorded while
 // retracing; the time limit during a retrace restarts exploration where the vehicle is, as for
 // any waypoint. Paper 002 has no memory across its restarts: seed 1 of gt-building's URG-04LX
@@ -252,6 +253,7 @@ class SrtStarPlanner {
   std::size_t trail_next_ = 0;  // the trail scan's next point (counting down), or the
                                 // retrace's current trail point
   std::size_t trail_best_ = 0;  // the trail point with the most unflown cells in reach
+  std::size_t trail_reached_ = 0;  // retracing: the earliest visit of the point last reached
   uint32_t unflown_best_ = 0, unflown_here_ = 0;
   uint32_t retraces_ = 0;
 
