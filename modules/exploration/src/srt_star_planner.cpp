@@ -14,8 +14,6 @@ namespace {
 // Coming this much nearer the waypoint is progress (blocked arrivals).
 constexpr float kProgressM = 0.05f;
 
-Point2 trail_point(const FlownHistory& trail, std::size_t i) { return trail.point(i); }
-
 float apart(Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 // Ancestors a frontier with no path from its node is offered to, nearest first: enough to
 // leave a doorway (the parent or grandparent in practice), and a bounded cost in one slice.
@@ -574,7 +572,7 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
 uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   if (trail_next_ >= kRetraceStride) {
     trail_next_ -= kRetraceStride;
-    const uint32_t used = bearings_.count(visited_, trail_point(trail_, trail_next_));
+    const uint32_t used = bearings_.count(visited_, trail_.point(trail_next_));
     if (bearings_.total() > unflown_best_) {
       unflown_best_ = bearings_.total();
       trail_best_ = trail_next_;
@@ -583,7 +581,7 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   }
   bearings_counted_ = false;
   const bool worth_it = unflown_best_ >= kRetraceMinUnflown && 4 * unflown_best_ >= kRetraceGainQuarters * unflown_here_ &&
-                        apart({job_pose_.x, job_pose_.y}, trail_point(trail_, trail_best_)) >= kRetraceStepM;
+                        apart({job_pose_.x, job_pose_.y}, trail_.point(trail_best_)) >= kRetraceStepM;
   if (!worth_it) return run_out_on_root(now);
   // Back along the trail: from the newest point, the first kRetraceStepM from the vehicle.
   ++retraces_;
@@ -592,9 +590,9 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   trail_next_ = trail_reached_ = trail_.size() - 1;
   const Point2 from{job_pose_.x, job_pose_.y};
   while (trail_next_ > trail_best_ &&
-         apart(from, trail_point(trail_, trail_next_)) < kRetraceStepM)
+         apart(from, trail_.point(trail_next_)) < kRetraceStepM)
     --trail_next_;
-  set_waypoint(trail_point(trail_, trail_next_), now);
+  set_waypoint(trail_.point(trail_next_), now);
   step_ = Step::kNone;
   return 1;
 }
@@ -608,10 +606,10 @@ Status SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan,
     return start_grow(pose, scan);
   }
   // A loop back to here is not flown again: on from the earliest visit of this place.
-  const Point2 at = trail_point(trail_, trail_next_);
+  const Point2 at = trail_.point(trail_next_);
   trail_next_ = trail_reached_ = trail_.earliest_near(trail_best_, trail_next_, at, kRetraceLoopM);
-  while (trail_next_ > trail_best_ && apart(at, trail_point(trail_, trail_next_)) < kRetraceStepM) --trail_next_;
-  set_waypoint(trail_point(trail_, trail_next_), now);
+  while (trail_next_ > trail_best_ && apart(at, trail_.point(trail_next_)) < kRetraceStepM) --trail_next_;
+  set_waypoint(trail_.point(trail_next_), now);
   return Status::kOk;
 }
 

@@ -41,8 +41,8 @@
 // (FlownHistory, recorded from the poses given, loops kept):
 // UnflownBearings counted at every kRetraceStride-th trail point, from the newest back, as work
 // items of the arrival step. If the most unflown cells any trail point has in reach are at least
-// kRetraceGain times those where the vehicle is, and at least kRetraceMinUnflown, the vehicle
-// flies back along the trail (kRetrace: trail points kRetraceStepM apart, each arrived at
+// kRetraceGainQuarters / 4 times those where the vehicle is and at least kRetraceMinUnflown,
+// and that point lies kRetraceStepM or more away, the vehicle flies back along the trail (kRetrace: trail points kRetraceStepM apart, each arrived at
 // within kRetraceArrivalM, the last within d; a loop is skipped where an earlier point lies
 // within kRetraceLoopM of the one reached) and a fresh tree (steered, as any after a restart)
 // grows where it ends; the trail is cut back to there (or, when the time limit ends the
