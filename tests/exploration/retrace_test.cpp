@@ -20,11 +20,12 @@ const LaserModel kUrg = LaserModel::urg04lx();
 
 TEST(FlownHistory, KeepsPointsASpacingApartInTheOrderFlown) {
   FlownHistory h;
-  for (int i = 0; i <= 100; ++i) h.record({0.1f * static_cast<float>(i), 0});  // 10 m east
+  const float s = FlownHistory::kSpacingM;
+  for (int i = 0; i <= 100; ++i) h.record({0.1f * s * static_cast<float>(i), 0});  // 10 spacings east
   ASSERT_EQ(h.size(), 11u);
-  for (std::size_t i = 0; i < h.size(); ++i) EXPECT_NEAR(h.point(i).x, static_cast<float>(i), 1e-4f);
+  for (std::size_t i = 0; i < h.size(); ++i) EXPECT_NEAR(h.point(i).x, s * static_cast<float>(i), 1e-4f);
   // Back the same way: a loop is kept, unlike the mission's breadcrumb trail.
-  for (int i = 99; i >= 0; --i) h.record({0.1f * static_cast<float>(i), 0});
+  for (int i = 99; i >= 0; --i) h.record({0.1f * s * static_cast<float>(i), 0});
   EXPECT_EQ(h.size(), 21u);
   EXPECT_NEAR(h.point(20).x, 0.0f, 1e-4f);
   h.record({NAN, 0});
@@ -34,10 +35,10 @@ TEST(FlownHistory, KeepsPointsASpacingApartInTheOrderFlown) {
 
 TEST(FlownHistory, WhenFullEveryOtherPointGoesTheNewestStaysAndTheSpacingDoubles) {
   FlownHistory h;
-  for (std::size_t i = 0; i < FlownHistory::kCapacity; ++i) h.record({static_cast<float>(i), 0});
+  for (std::size_t i = 0; i < FlownHistory::kCapacity; ++i) h.record({static_cast<float>(i), 0});  // 1 m apart
   ASSERT_EQ(h.size(), FlownHistory::kCapacity);
   h.record({static_cast<float>(FlownHistory::kCapacity) + 1.0f, 0});
-  EXPECT_FLOAT_EQ(h.spacing_m(), 2.0f);
+  EXPECT_FLOAT_EQ(h.spacing_m(), 2.0f * FlownHistory::kSpacingM);
   EXPECT_EQ(h.size(), FlownHistory::kCapacity / 2 + 2);
   EXPECT_FLOAT_EQ(h.point(0).x, 0.0f);
   EXPECT_FLOAT_EQ(h.point(1).x, 2.0f);
@@ -94,10 +95,10 @@ struct RetraceFlight {
 // is ever reached on the way out); the flight out runs past the time limit, and the fresh tree
 // at its end is grown from a scan with walls 1 m away all round: it runs out at once. Then
 // the vehicle is put on each waypoint in turn.
-RetraceFlight fly(bool retrace, int retrace_legs = 300) {
+RetraceFlight fly(bool retrace, int retrace_legs = 300, bool sliced = false) {
   RetraceFlight r;
   SrtParams srt;
-  srt.arrival_work_per_cycle = 0;
+  if (!sliced) srt.arrival_work_per_cycle = 0;
   srt.retrace = retrace;
   GuidanceParams g;
   g.waypoint_time_limit_s = 1000.0f;
@@ -109,6 +110,8 @@ RetraceFlight fly(bool retrace, int retrace_legs = 300) {
   const float west = static_cast<float>(M_PI);
   bool fresh = false;
   EXPECT_EQ(r.planner->update({0, 0, west}, west_open, TimeUs{}, fresh), Status::kOk);
+  for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
+    EXPECT_EQ(r.planner->update({0, 0, west}, west_open, TimeUs{}, fresh), Status::kOk);
   EXPECT_EQ(r.planner->mode(), PlannerMode::kForward);
   EXPECT_LT(r.planner->waypoint().x, -0.3f);
   TimeUs t{};
@@ -122,6 +125,10 @@ RetraceFlight fly(bool retrace, int retrace_legs = 300) {
   r.end = {last.x, last.y, 0};
   t = TimeUs::from_s(1001);
   EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
+  // Sliced, the arrival step (the trail's count among it) goes on over the next calls, the
+  // vehicle waiting where it is.
+  for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
+    EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
   EXPECT_EQ(r.planner->restarts(RestartReason::kTimeout), 1u);
   for (int k = 0; k < retrace_legs && r.planner->mode() == PlannerMode::kRetrace; ++k) {
     r.waypoints.push_back(r.planner->waypoint());
@@ -129,6 +136,8 @@ RetraceFlight fly(bool retrace, int retrace_legs = 300) {
     r.end = {w.x, w.y, 0};
     t += Duration::from_s(1);
     EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
+    for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
+      EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
   }
   return r;
 }
@@ -142,13 +151,23 @@ TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsS
   // Every waypoint is a point of the flight out, 2 m or so from the one before; the loop
   // north (y over 1.5 m between x 20 and 22) is not flown again.
   const std::vector<Point2> out = flight_out();
+  const auto off_the_path = [&out](Point2 q) {
+    float nearest = 1e9f;
+    for (const Point2& p : out) nearest = std::min(nearest, std::hypot(p.x - q.x, p.y - q.y));
+    return nearest;
+  };
+  // Each leg, not only its ends, keeps to the path flown: a corner cut on the way back can
+  // go through the wall of the door the vehicle came by.
   Point2 before{r.waypoints.front()};
   for (const Point2& w : r.waypoints) {
-    float nearest = 1e9f;
-    for (const Point2& p : out) nearest = std::min(nearest, std::hypot(p.x - w.x, p.y - w.y));
-    EXPECT_LT(nearest, 0.3f) << w.x << ", " << w.y;
+    EXPECT_LT(off_the_path(w), 0.3f) << w.x << ", " << w.y;
+    for (int k = 1; k < 10; ++k) {
+      const float f = 0.1f * static_cast<float>(k);
+      const Point2 q{before.x + f * (w.x - before.x), before.y + f * (w.y - before.y)};
+      EXPECT_LT(off_the_path(q), 0.35f) << "the leg to " << w.x << ", " << w.y << " leaves the path at " << q.x << ", " << q.y;
+    }
     EXPECT_FALSE(w.x > 19.5f && w.x < 22.5f && w.y > 1.5f) << "the loop again at " << w.x << ", " << w.y;
-    EXPECT_LT(std::hypot(w.x - before.x, w.y - before.y), 2.0f * FlownHistory::kSpacingM + 2.0f);
+    EXPECT_LT(std::hypot(w.x - before.x, w.y - before.y), SrtStarPlanner::kRetraceStepM + 2.0f * FlownHistory::kSpacingM);
     before = w;
   }
   // It ended beside the unflown rooms, on the first leg of the flight, where the fresh trees
@@ -157,7 +176,20 @@ TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsS
   EXPECT_NEAR(r.end.y, 0.0f, 0.3f);
   ASSERT_FALSE(r.planner->tree().nodes().empty());
   EXPECT_NEAR(r.planner->tree().nodes()[0].position.x, r.end.x, 1e-4f);
-  EXPECT_LE(r.planner->trail().size(), 20u);  // cut back to where the retrace ended
+  EXPECT_LE(r.planner->trail().size(), 40u);  // cut back to where the retrace ended
+}
+
+// The trail's count and the arrival steps in slices, as on the Verdex: the same way back.
+TEST(SrtStarPlannerRetrace, SlicedTheWayBackIsTheOneShotOne) {
+  const RetraceFlight whole = fly(true);
+  const RetraceFlight sliced = fly(true, 300, true);
+  ASSERT_EQ(sliced.planner->retraces(), 1u);
+  ASSERT_EQ(sliced.waypoints.size(), whole.waypoints.size());
+  for (std::size_t i = 0; i < whole.waypoints.size(); ++i) {
+    EXPECT_FLOAT_EQ(sliced.waypoints[i].x, whole.waypoints[i].x) << i;
+    EXPECT_FLOAT_EQ(sliced.waypoints[i].y, whole.waypoints[i].y) << i;
+  }
+  EXPECT_FLOAT_EQ(sliced.end.x, whole.end.x);
 }
 
 // Held on a leg of the way back until the time limit: exploration restarts where the vehicle

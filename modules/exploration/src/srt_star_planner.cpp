@@ -15,6 +15,14 @@ namespace {
 constexpr float kProgressM = 0.05f;
 
 float apart(Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// Distance of p from the segment a-b.
+float off_segment(Point2 a, Point2 b, Point2 p) {
+  const float abx = b.x - a.x, aby = b.y - a.y, apx = p.x - a.x, apy = p.y - a.y;
+  const float len2 = abx * abx + aby * aby;
+  const float t = len2 > 0 ? std::clamp((apx * abx + apy * aby) / len2, 0.0f, 1.0f) : 0.0f;
+  return std::hypot(apx - t * abx, apy - t * aby);
+}
 // Ancestors a frontier with no path from its node is offered to, nearest first: enough to
 // leave a doorway (the parent or grandparent in practice), and a bounded cost in one slice.
 constexpr int kHandUpLevels = 8;
@@ -587,28 +595,44 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   ++retraces_;
   mode_ = PlannerMode::kRetrace;
   target_node_ = kNoNode;
-  trail_next_ = trail_reached_ = trail_.size() - 1;
-  const Point2 from{job_pose_.x, job_pose_.y};
-  while (trail_next_ > trail_best_ &&
-         apart(from, trail_.point(trail_next_)) < kRetraceStepM)
-    --trail_next_;
+  // A run-out on the root comes after backtracking to it: the newest points are the way back
+  // from the branch just explored, which the earliest visit of this place skips.
+  const std::size_t newest = trail_.size() - 1;
+  trail_reached_ = trail_.earliest_near(trail_best_, newest, trail_.point(newest), kRetraceLoopM);
+  trail_next_ = next_leg(trail_reached_, {job_pose_.x, job_pose_.y});
   set_waypoint(trail_.point(trail_next_), now);
   step_ = Step::kNone;
   return 1;
 }
 
+std::size_t SrtStarPlanner::next_leg(std::size_t from, Point2 at) const {
+  std::size_t end = from;
+  while (end > trail_best_) {
+    const std::size_t candidate = end - 1;
+    bool along = true;
+    for (std::size_t k = candidate + 1; k <= from && along && candidate + 1 < from; ++k)
+      along = off_segment(at, trail_.point(candidate), trail_.point(k)) <= kRetraceDeviationM;
+    if (!along) break;
+    end = candidate;
+    if (apart(at, trail_.point(end)) >= kRetraceStepM) break;
+  }
+  return end;
+}
+
 Status SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now) {
   if (trail_next_ <= trail_best_) {
     // There: what was recorded after it is not the way the vehicle is now, and a fresh tree
-    // grows here.
+    // grows here, steered towards what drew the vehicle back (a pause from a steered waypoint
+    // given up elsewhere does not hold here).
     trail_.keep_first(trail_best_ + 1);
+    steer_paused_ = false;
     restart_tree(RestartReason::kRetraced);
     return start_grow(pose, scan);
   }
   // A loop back to here is not flown again: on from the earliest visit of this place.
   const Point2 at = trail_.point(trail_next_);
-  trail_next_ = trail_reached_ = trail_.earliest_near(trail_best_, trail_next_, at, kRetraceLoopM);
-  while (trail_next_ > trail_best_ && apart(at, trail_.point(trail_next_)) < kRetraceStepM) --trail_next_;
+  trail_reached_ = trail_.earliest_near(trail_best_, trail_next_, at, kRetraceLoopM);
+  trail_next_ = next_leg(trail_reached_, at);
   set_waypoint(trail_.point(trail_next_), now);
   return Status::kOk;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The path flown, in order, as points about `spacing` apart: srt.retrace's way back to a place
+// The path flown, in order, as points about kSpacingM apart: srt.retrace's way back to a place
 // flown before (srt_star_planner.hpp). Unlike the mission's breadcrumb trail, loops are kept:
 // a run-out on the root comes after SRT-Star has backtracked to it, where the loop-cut trail
 // is the few points of the start, while the rooms still unflown lie beside places the vehicle
@@ -15,7 +15,10 @@ namespace kestrel::exploration {
 class FlownHistory {
  public:
   static constexpr std::size_t kCapacity = 1024;
-  static constexpr float kSpacingM = 1.0f;
+  // Half a metre: the chord between two points cuts a right-angled turn by under 0.18 m, little
+  // enough to keep a leg back through a 0.95 m door off its jambs. 512 m before the first
+  // thinning (a 30-minute flight is about 600 m), after which a chord can cut 0.35 m.
+  static constexpr float kSpacingM = 0.5f;
 
   void clear();
   // Records a position; non-finite ones are ignored.

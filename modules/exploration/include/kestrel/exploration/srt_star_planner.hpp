@@ -42,12 +42,14 @@
 // UnflownBearings counted at every kRetraceStride-th trail point, from the newest back, as work
 // items of the arrival step. If the most unflown cells any trail point has in reach are at least
 // kRetraceGainQuarters / 4 times those where the vehicle is and at least kRetraceMinUnflown,
-// and that point lies kRetraceStepM or more away, the vehicle flies back along the trail (kRetrace: trail points kRetraceStepM apart, each arrived at
-// within kRetraceArrivalM, the last within d; a loop is skipped where an earlier point lies
-// within kRetraceLoopM of the one reached) and a fresh tree (steered, as any after a restart)
-// grows where it ends; the trail is cut back to there (or, when the time limit ends the
-// retrace, to the point last reached). Else, or once per run-out until
-// a forward waypoint is reached, the run-out goes on as above. The trail is not recorded while
+// and that point lies kRetraceStepM or more away, the vehicle flies back along the trail
+// (kRetrace: legs of up to kRetraceStepM that pass within kRetraceDeviationM of every trail
+// point they skip, each end arrived at within kRetraceArrivalM, the last within d; a loop is
+// skipped where an earlier point lies within kRetraceLoopM of the one reached, the vehicle's
+// own place when the retrace begins included) and a fresh tree (steered, as any after a
+// restart, even after a steering pause) grows where it ends; the trail is cut back to there
+// (or, when the time limit ends the retrace, to the point last reached). Else the run-out goes
+// on as above; the trail is looked along at most once until a forward waypoint is reached. The trail is not recorded while
 // retracing; the time limit during a retrace restarts exploration where the vehicle is, as for
 // any waypoint. Paper 002 has no memory across its restarts: seed 1 of gt-building's URG-04LX
 // flights restarted 11 times in the building's east half, its west rooms never entered
@@ -169,7 +171,10 @@ class SrtStarPlanner {
   static constexpr uint32_t kRetraceMinUnflown = 64;     // weighted cells (unflown_bearings.hpp)
   static constexpr float kRetraceStepM = 2.0f;
   static constexpr float kRetraceArrivalM = 0.8f;
-  static constexpr float kRetraceLoopM = 0.75f;  // an earlier point this near is the same place
+  // An earlier point this near is the same place: under FlownHistory's spacing, so that the
+  // point before on the same path is not taken for one.
+  static constexpr float kRetraceLoopM = 0.4f;
+  static constexpr float kRetraceDeviationM = 0.15f;  // a leg passes this near every point it skips
   TimeUs waypoint_time() const { return waypoint_time_; }
   const VisitedGrid& visited() const { return visited_; }  // where the vehicle has flown
 
@@ -199,6 +204,10 @@ class SrtStarPlanner {
   uint32_t run_out_on_root(TimeUs now);
   // srt.retrace: counts the next trail point; when the trail is done, retraces or runs out.
   uint32_t scan_trail(TimeUs now);
+  // The end of the next leg back from trail point `from`, for a vehicle at `at` (on or near
+  // it): the point before, or further back up to kRetraceStepM while every point the leg skips
+  // lies within kRetraceDeviationM of it (no corner cut).
+  std::size_t next_leg(std::size_t from, Point2 at) const;
   // Flying back along the trail: the next trail point kRetraceStepM on, or the fresh tree.
   Status advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now);
   // The straight path from the arrival pose to `p` against the returns of the arrival scan.
