@@ -591,7 +591,7 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   const bool worth_it = unflown_best_ >= kRetraceMinUnflown && 4 * unflown_best_ >= kRetraceGainQuarters * unflown_here_ &&
                         apart({job_pose_.x, job_pose_.y}, trail_.point(trail_best_)) >= kRetraceStepM;
   if (!worth_it) return run_out_on_root(now);
-  // Back along the trail: from the newest point, the first kRetraceStepM from the vehicle.
+  // Back along the trail, from the earliest visit of where the vehicle is (next_leg's legs).
   ++retraces_;
   mode_ = PlannerMode::kRetrace;
   target_node_ = kNoNode;

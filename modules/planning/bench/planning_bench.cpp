@@ -32,6 +32,8 @@ const Laser kUrg = Laser::urg04lx(), kUtm = Laser::utm30lx();
 
 LaserScan scan_at(const Pose2& at, const Laser& l) { return hall().scan(l, at.x, at.y, at.theta); }
 
+// Benchmarks only, never flown: the grids, scans and planners below are allocated in set-up,
+// before each timed loop, because they are too large for the benchmark thread's stack.
 // The hall drawn from a walk along it and through the door.
 std::unique_ptr<OccupancyGrid> drawn_hall(const Laser& l) {
   auto grid = std::make_unique<OccupancyGrid>();

@@ -43,6 +43,8 @@ scan_matching::ScanPoints room_points(const Pose2& at, int beams, float fov, flo
 }
 
 void run(benchmark::State& state, int beams, float fov, float reach) {
+  // Benchmark set-up, never flown: the map, the SLAM and the point sets are allocated before
+  // the timed loop, because they are too large for the benchmark thread's stack.
   auto map = std::make_unique<SlamMap>();
   auto slam = std::make_unique<CompactSlam>(*map);
   SlamParams params;
