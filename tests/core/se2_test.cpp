@@ -74,5 +74,22 @@ TEST(Pose2, TransformPoint) {
   EXPECT_NEAR(q.y, 1, kTol);
 }
 
+TEST(Point2, DistanceIsSymmetricAndPlanar) {
+  const Point2d a{1, 2}, b{4, 6};
+  EXPECT_NEAR(distance(a, b), 5, kTol);
+  EXPECT_NEAR(distance(b, a), 5, kTol);
+  EXPECT_EQ(distance(a, a), 0);
+}
+
+TEST(Point2, DistanceToSegmentIsPerpendicularInsideAndToTheNearerEndOutside) {
+  const Point2d a{0, 0}, b{4, 0};
+  EXPECT_NEAR(distance_to_segment(a, b, {2, 3}), 3, kTol);   // over the middle
+  EXPECT_NEAR(distance_to_segment(a, b, {-3, 4}), 5, kTol);  // beyond a: from a
+  EXPECT_NEAR(distance_to_segment(a, b, {7, -4}), 5, kTol);  // beyond b: from b
+  EXPECT_NEAR(distance_to_segment(a, b, {1, 0}), 0, kTol);   // on it
+  // A segment of no length is its one point.
+  EXPECT_NEAR(distance_to_segment(a, a, {3, 4}), 5, kTol);
+}
+
 }  // namespace
 }  // namespace kestrel

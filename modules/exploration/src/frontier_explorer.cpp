@@ -10,9 +10,6 @@ using planning::CellBox;
 using planning::ObstacleDistance;
 
 namespace {
-
-float distance(const Point2& a, const Point2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
-
 // Within this of facing the frontier, the laser (240 or 270 degrees) has it well inside its fan.
 constexpr float kFacingRad = 0.35f;
 // Cells the grid must learn for that to count as progress (a metre of corridor's width, say).

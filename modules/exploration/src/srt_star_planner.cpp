@@ -14,15 +14,6 @@ namespace {
 // Coming this much nearer the waypoint is progress (blocked arrivals).
 constexpr float kProgressM = 0.05f;
 
-float apart(Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
-
-// Distance of p from the segment a-b.
-float off_segment(Point2 a, Point2 b, Point2 p) {
-  const float abx = b.x - a.x, aby = b.y - a.y, apx = p.x - a.x, apy = p.y - a.y;
-  const float len2 = abx * abx + aby * aby;
-  const float t = len2 > 0 ? std::clamp((apx * abx + apy * aby) / len2, 0.0f, 1.0f) : 0.0f;
-  return std::hypot(apx - t * abx, apy - t * aby);
-}
 // Ancestors a frontier with no path from its node is offered to, nearest first: enough to
 // leave a doorway (the parent or grandparent in practice), and a bounded cost in one slice.
 constexpr int kHandUpLevels = 8;
@@ -589,7 +580,7 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   }
   bearings_counted_ = false;
   const bool worth_it = unflown_best_ >= kRetraceMinUnflown && 4 * unflown_best_ >= kRetraceGainQuarters * unflown_here_ &&
-                        apart({job_pose_.x, job_pose_.y}, trail_.point(trail_best_)) >= kRetraceStepM;
+                        distance({job_pose_.x, job_pose_.y}, trail_.point(trail_best_)) >= kRetraceStepM;
   if (!worth_it) return run_out_on_root(now);
   // Back along the trail, from the earliest visit of where the vehicle is (next_leg's legs).
   ++retraces_;
@@ -609,12 +600,14 @@ std::size_t SrtStarPlanner::next_leg(std::size_t from, Point2 at) const {
   std::size_t end = from;
   while (end > trail_best_) {
     const std::size_t candidate = end - 1;
+    // The first leg skips no point but `from`, which the vehicle is at.
     bool along = true;
-    for (std::size_t k = candidate + 1; k <= from && along && candidate + 1 < from; ++k)
-      along = off_segment(at, trail_.point(candidate), trail_.point(k)) <= kRetraceDeviationM;
+    if (candidate + 1 < from)
+      for (std::size_t k = candidate + 1; k <= from && along; ++k)
+        along = distance_to_segment(at, trail_.point(candidate), trail_.point(k)) <= kRetraceDeviationM;
     if (!along) break;
     end = candidate;
-    if (apart(at, trail_.point(end)) >= kRetraceStepM) break;
+    if (distance(at, trail_.point(end)) >= kRetraceStepM) break;
   }
   return end;
 }

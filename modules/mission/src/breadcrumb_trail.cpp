@@ -1,6 +1,7 @@
 #include "kestrel/mission/breadcrumb_trail.hpp"
 
-#include <algorithm>
+#include "kestrel/core/path_halving.hpp"
+#include "kestrel/core/se2.hpp"
 
 namespace kestrel::mission {
 
@@ -29,12 +30,9 @@ void BreadcrumbTrail::cut_loop_to(std::size_t earlier_index) {
 }
 
 namespace {
-// Distance of p from the segment a-b, in the plane.
+// How far the leg a-b passes from p, in the plane.
 float deviation(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& p) {
-  const Eigen::Vector2f ab = (b - a).head<2>(), ap = (p - a).head<2>();
-  const float len2 = ab.squaredNorm();
-  const float t = len2 > 0 ? std::clamp(ap.dot(ab) / len2, 0.0f, 1.0f) : 0.0f;
-  return (ap - t * ab).norm();
+  return distance_to_segment(Point2{a.x(), a.y()}, Point2{b.x(), b.y()}, Point2{p.x(), p.y()});
 }
 }  // namespace
 
@@ -50,11 +48,7 @@ void BreadcrumbTrail::thin_out() {
   while (points_.size() > w) points_.pop_back();
   if (points_.size() < kCapacity - kCapacity / 4) return;
   // Still nearly full: the path is all corners; halve it and accept the coarser spacing.
-  w = 0;
-  for (std::size_t r = 0; r < points_.size(); r += 2) points_[w++] = points_[r];
-  // Keep the newest point: the trail must end where the vehicle is.
-  if (points_.size() % 2 == 0) points_[w++] = points_.back();
-  while (points_.size() > w) points_.pop_back();
+  halve_keeping_ends(points_);
   spacing_m_ *= 2;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Rigid-body poses in the plane, SE(2): composition, inverse, relative pose and point
-// transforms. The heading is kept wrapped to [-pi, pi).
+// transforms. The heading is kept wrapped to [-pi, pi). Also the two point distances the
+// planners and trails measure paths with.
+#include <algorithm>
 #include <cmath>
 
 #include "kestrel/core/angle.hpp"
@@ -12,6 +14,21 @@ struct Point2T {
   T x = 0;
   T y = 0;
 };
+
+template <class T>
+T distance(const Point2T<T>& a, const Point2T<T>& b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
+
+// Distance of p from the segment a-b: how far a straight leg a-b passes from a point of the
+// path it replaces (the distance from a when a and b coincide).
+template <class T>
+T distance_to_segment(const Point2T<T>& a, const Point2T<T>& b, const Point2T<T>& p) {
+  const T abx = b.x - a.x, aby = b.y - a.y, apx = p.x - a.x, apy = p.y - a.y;
+  const T len2 = abx * abx + aby * aby;
+  const T t = len2 > 0 ? std::clamp((apx * abx + apy * aby) / len2, T(0), T(1)) : T(0);
+  return std::hypot(apx - t * abx, apy - t * aby);
+}
 
 template <class T>
 struct Pose2T {
