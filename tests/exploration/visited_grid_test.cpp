@@ -120,5 +120,74 @@ TEST(SrtStarPlanner, VisitedGridSurvivesRestartsAndGoesWithReset) {
   EXPECT_FALSE(planner->visited().visited({0, 0}));
 }
 
+TEST(VisitedGrid, TheSeenLayerHoldsSingleCellsAndNeitherFlownCellsNorTheExtent) {
+  VisitedGrid g;
+  g.mark_seen({0.5f, 0.5f});  // before the first mark there is no grid
+  g.mark({0.5f, 0.5f});
+  int ix = 0, iy = 0;
+  ASSERT_TRUE(g.cell_of({0.5f, 0.5f}, ix, iy));
+  EXPECT_FALSE(g.seen_cell(ix, iy));
+  g.mark_seen({4.5f, 0.5f});
+  EXPECT_TRUE(g.seen_cell(ix + 4, iy));
+  EXPECT_FALSE(g.seen_cell(ix + 3, iy));  // one cell, not its neighbours
+  EXPECT_FALSE(g.seen_cell(ix + 4, iy + 1));
+  EXPECT_FALSE(g.visited_cell(ix + 4, iy));  // seen is not flown
+  EXPECT_FALSE(g.in_extent(ix + 4, iy));     // nor the building's outline
+  g.mark_seen({NAN, 0});
+  g.mark_seen({1e6f, 0});
+  EXPECT_FALSE(g.seen_cell(-1, 0));
+  EXPECT_FALSE(g.seen_cell(VisitedGrid::kSide, 0));
+  g.clear();
+  EXPECT_FALSE(g.seen_cell(ix + 4, iy));
+}
+
+// srt.retrace_seen_m: the cells a node's scan shows free within the reach are marked seen
+// (and only with srt.retrace, whose counts are the only ones that read them).
+bool seen(const SrtStarPlanner& p, Point2 at) {
+  int ix = 0, iy = 0;
+  return p.visited().cell_of(at, ix, iy) && p.visited().seen_cell(ix, iy);
+}
+
+std::unique_ptr<SrtStarPlanner> root_in_room(bool retrace, float seen_m) {
+  auto planner = std::make_unique<SrtStarPlanner>();
+  SrtParams srt;
+  srt.arrival_work_per_cycle = 0;
+  srt.retrace = retrace;
+  srt.retrace_seen_m = seen_m;
+  EXPECT_EQ(planner->configure(srt, GuidanceParams{}), Status::kOk);
+  SegmentWorld room;
+  room.add_box(-3, -3, 3, 3);  // walls 3 m from the root on every side
+  bool fresh = false;
+  EXPECT_EQ(planner->update({0, 0, 0}, room.scan(LaserModel::urg04lx(), 0, 0, 0), TimeUs{}, fresh), Status::kOk);
+  return planner;
+}
+
+TEST(SrtStarPlanner, ANodesScanMarksWhatItShowsFreeWithinTheSeenReach) {
+  // The grid's cells have integer edges here (the first mark, at the root, is on one).
+  const auto near = root_in_room(true, 1.6f);
+  EXPECT_TRUE(seen(*near, {1.5f, 0.5f}));    // free, within reach
+  EXPECT_FALSE(seen(*near, {-1.5f, 0.5f}));  // in the laser's blind arc behind the vehicle
+  EXPECT_TRUE(seen(*near, {0.5f, 1.5f}));
+  EXPECT_FALSE(seen(*near, {0.5f, 2.5f}));  // free, beyond the reach
+  const auto far = root_in_room(true, 10.0f);
+  EXPECT_TRUE(seen(*far, {0.5f, 2.5f}));   // up to half a cell short of the wall
+  EXPECT_FALSE(seen(*far, {0.5f, 3.5f}));  // the wall's own cell
+  EXPECT_FALSE(seen(*far, {0.5f, 4.5f}));  // behind it
+  // Off, or without the retrace: nothing is marked.
+  EXPECT_FALSE(seen(*root_in_room(true, 0.0f), {0.5f, 1.5f}));
+  EXPECT_FALSE(seen(*root_in_room(false, 10.0f), {0.5f, 1.5f}));
+}
+
+TEST(SrtStarPlanner, ASeenReachMustBeFiniteAndNotNegative) {
+  SrtStarPlanner planner;
+  SrtParams srt;
+  srt.retrace_seen_m = -1.0f;
+  EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kInvalidArgument);
+  srt.retrace_seen_m = NAN;
+  EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kInvalidArgument);
+  srt.retrace_seen_m = 4.0f;
+  EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kOk);
+}
+
 }  // namespace
 }  // namespace kestrel::exploration
