@@ -78,24 +78,6 @@ VisitedGrid flown_but_a_patch(int dist) {
 
 // The same nine unflown cells weigh about five times as much 3 m away as 12 m away: a door into
 // an unflown room beside the node outweighs a corridor's far end.
-TEST(UnflownBearings, CountingUnseenLeavesOutTheCellsTheLaserShowedFree) {
-  VisitedGrid g = corridor_flown_west_rooms_not();
-  UnflownBearings b;
-  b.count(g, {12.0f, 0});
-  const uint32_t unflown = b.total();
-  b.count(g, {12.0f, 0}, UnflownBearings::Counting::kUnflownUnseen);
-  EXPECT_EQ(b.total(), unflown);  // nothing seen yet: the same count
-  // The north rooms seen from the corridor: only the south ones are left.
-  for (float x = -0.5f; x < 14.0f; x += 1.0f)
-    for (float y = 1.5f; y < 9.0f; y += 1.0f) g.mark_seen({x, y});
-  b.count(g, {12.0f, 0});
-  EXPECT_EQ(b.total(), unflown);  // the default count is of flown cells alone
-  b.count(g, {12.0f, 0}, UnflownBearings::Counting::kUnflownUnseen);
-  EXPECT_GT(b.total(), 0u);
-  EXPECT_LT(b.total(), unflown * 2 / 3);
-  EXPECT_EQ(b.score(kNorth), 0u);
-}
-
 TEST(UnflownBearings, NearerUnflownCellsWeighMore) {
   UnflownBearings b;
   b.count(flown_but_a_patch(3), {0, 0});

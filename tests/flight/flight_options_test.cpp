@@ -126,13 +126,6 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "on"}}}, retrace), "");
   EXPECT_TRUE(retrace.stack.explorer.srt.retrace);
   EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "1"}}}, retrace), "");
-  // ... counting what the laser showed free within a reach as explored.
-  EXPECT_EQ(retrace.stack.explorer.srt.retrace_seen_m, 0.0f);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace_seen_m", "3"}}}, retrace), "");
-  EXPECT_FLOAT_EQ(retrace.stack.explorer.srt.retrace_seen_m, 3.0f);
-  for (const char* bad : {"-1", "65", "nan", "far"})
-    EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace_seen_m", bad}}}, retrace), "")
-        << bad;
   // Frontiers kept beside walls.
   FlightOptions rescue;
   EXPECT_FALSE(rescue.stack.explorer.srt.rescue_frontiers);

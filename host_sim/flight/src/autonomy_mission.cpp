@@ -208,9 +208,6 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
         return e;
       }
       *on = value == "on";
-    } else if (key == "srt_retrace_seen_m" && kind == mission::MissionKind::kExplore) {
-      if (!parse_double(value, d) || d < 0 || d >= 65) return "srt_retrace_seen_m: '" + value + "' is not a reach in [0, 65) m";
-      out.stack.explorer.srt.retrace_seen_m = static_cast<float>(d);
     } else if (key == "srt_range_m" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d <= 0 || d >= 65) return "srt_range_m: '" + value + "' is not a range in (0, 65) m";
       out.stack.explorer.srt.perception_range_m = static_cast<float>(d);

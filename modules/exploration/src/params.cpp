@@ -52,7 +52,7 @@ Status Params::validate() const {
                       positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
                       srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
                       non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1 &&
-                      non_negative(srt.retrace_seen_m) && srt.retrace_seen_m < 65.0f && known(srt.steer);
+                      known(srt.steer);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
     const KeepOut& k = srt.keep_out[i];

@@ -318,7 +318,7 @@ void SrtStarPlanner::work_on_arrival(TimeUs now) {
       case Step::kTree:
         used += tree_.advance(sectors_, budget - used);
         if (!tree_.adding()) {
-          used += take_in_returns();
+          used += widen_extent_to_returns();
           used += drop_frontiers_seen_through_keep_outs();
           step_ = Step::kPick;
           bearings_counted_ = false;
@@ -478,38 +478,23 @@ uint32_t SrtStarPlanner::hand_up_or_drop(std::size_t i) {
   return used;
 }
 
-uint32_t SrtStarPlanner::take_in_returns() {
+uint32_t SrtStarPlanner::widen_extent_to_returns() {
   // The flown area alone is a poor outline of the building: a room never flown is outside its
   // bounding box and so never steered to (gt-building: the south rooms, when the first flights
   // went north). Every node's returns widen it to the walls the laser has seen; one beam in
-  // kReturnBeamStride is enough for a box, and at the URG-04LX's 0.35 degrees a beam, for seen
-  // cells 1.4 degrees apart (0.1 m at 4 m, a tenth of a cell).
-  constexpr std::size_t kReturnBeamStride = 4;
-  // Half a cell: a cell a beam crosses for 0.5 m or more is marked seen.
-  constexpr float kSeenStepM = 0.5f * VisitedGrid::kCellM;
-  const bool widen = srt_.steer != SteerUnflown::kNever;
-  const bool see = srt_.retrace && srt_.retrace_seen_m > 0.0f;
-  if ((!widen && !see) || !sectors_.beam_table_fits(job_scan_)) return 0;
+  // kExtentBeamStride is enough for a box.
+  constexpr std::size_t kExtentBeamStride = 4;
+  if (srt_.steer == SteerUnflown::kNever || !sectors_.beam_table_fits(job_scan_)) return 0;
   const float edge = job_pose_.theta + SectorScan::start_of(job_scan_);
   const float c = std::cos(edge), s = std::sin(edge);
   uint32_t used = work::kTableEntry;
-  for (std::size_t i = 0; i < job_scan_.beam_count; i += kReturnBeamStride) {
+  for (std::size_t i = 0; i < job_scan_.beam_count; i += kExtentBeamStride) {
     const uint16_t r_mm = job_scan_.range_mm[i];
     if (!LaserScan::is_return(r_mm)) continue;
     const float r = static_cast<float>(r_mm) * 1e-3f;
     const float bx = r * sectors_.beam_cos(i), by = r * sectors_.beam_sin(i);
-    if (widen) visited_.widen_extent({job_pose_.x + c * bx - s * by, job_pose_.y + s * bx + c * by});
+    visited_.widen_extent({job_pose_.x + c * bx - s * by, job_pose_.y + s * bx + c * by});
     used += work::kPathBeam;
-    if (!see) continue;
-    const float ux = c * sectors_.beam_cos(i) - s * sectors_.beam_sin(i);
-    const float uy = s * sectors_.beam_cos(i) + c * sectors_.beam_sin(i);
-    // Free up to the return, short of the wall's own cell; a beam with no return says nothing
-    // of how far it is free (a dropout reads the same).
-    const float free_m = std::min(r - kSeenStepM, srt_.retrace_seen_m);
-    for (float t = kSeenStepM; t <= free_m; t += kSeenStepM) {
-      visited_.mark_seen({job_pose_.x + t * ux, job_pose_.y + t * uy});
-      used += work::kSeenStep;
-    }
   }
   return used;
 }
@@ -575,7 +560,7 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
     trail_best_ = trail_next_;
     unflown_best_ = 0;
     step_ = Step::kTrailScan;
-    const uint32_t used = bearings_.count(visited_, {job_pose_.x, job_pose_.y}, retrace_counting());
+    const uint32_t used = bearings_.count(visited_, {job_pose_.x, job_pose_.y});
     unflown_here_ = bearings_.total();
     bearings_counted_ = false;
     return used;
@@ -586,7 +571,7 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
 uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   if (trail_next_ >= kRetraceStride) {
     trail_next_ -= kRetraceStride;
-    const uint32_t used = bearings_.count(visited_, trail_.point(trail_next_), retrace_counting());
+    const uint32_t used = bearings_.count(visited_, trail_.point(trail_next_));
     if (bearings_.total() > unflown_best_) {
       unflown_best_ = bearings_.total();
       trail_best_ = trail_next_;

@@ -33,8 +33,7 @@ UnflownBearings::UnflownBearings() {
   }
 }
 
-uint32_t UnflownBearings::count(const VisitedGrid& grid, Point2 from, Counting counting) {
-  const bool unseen_only = counting == Counting::kUnflownUnseen;
+uint32_t UnflownBearings::count(const VisitedGrid& grid, Point2 from) {
   cells_.fill(0);
   int cx = 0, cy = 0;
   if (!grid.cell_of(from, cx, cy)) return 1;
@@ -44,7 +43,7 @@ uint32_t UnflownBearings::count(const VisitedGrid& grid, Point2 from, Counting c
       const uint8_t bin = bin_of_offset_[offset];
       if (bin == kBeyondReach) continue;
       const int ix = cx + dx, iy = cy + dy;
-      if (grid.in_extent(ix, iy) && !grid.visited_cell(ix, iy) && !(unseen_only && grid.seen_cell(ix, iy)))
+      if (grid.in_extent(ix, iy) && !grid.visited_cell(ix, iy))
         cells_[bin] = static_cast<uint16_t>(cells_[bin] + weight_of_offset_[offset]);
     }
   }

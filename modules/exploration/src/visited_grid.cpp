@@ -8,7 +8,6 @@ namespace kestrel::exploration {
 
 void VisitedGrid::clear() {
   bits_.fill(0);
-  seen_bits_.fill(0);
   anchored_ = false;
   min_ix_ = min_iy_ = kSide;
   max_ix_ = max_iy_ = -1;
@@ -60,22 +59,11 @@ bool VisitedGrid::visited(Point2 p) const {
   return cell_of(p, ix, iy) && visited_cell(ix, iy);
 }
 
-void VisitedGrid::mark_seen(Point2 p) {
-  int ix = 0, iy = 0;
-  if (!cell_of(p, ix, iy)) return;
-  const std::size_t i = static_cast<std::size_t>(iy) * kSide + static_cast<std::size_t>(ix);
-  seen_bits_[i / 64] |= uint64_t{1} << (i % 64);
-}
-
-bool VisitedGrid::bit(const std::array<uint64_t, kSide * kSide / 64>& layer, int ix, int iy) {
+bool VisitedGrid::visited_cell(int ix, int iy) const {
   if (ix < 0 || iy < 0 || ix >= kSide || iy >= kSide) return false;
   const std::size_t i = static_cast<std::size_t>(iy) * kSide + static_cast<std::size_t>(ix);
-  return (layer[i / 64] >> (i % 64)) & 1u;
+  return (bits_[i / 64] >> (i % 64)) & 1u;
 }
-
-bool VisitedGrid::visited_cell(int ix, int iy) const { return bit(bits_, ix, iy); }
-
-bool VisitedGrid::seen_cell(int ix, int iy) const { return bit(seen_bits_, ix, iy); }
 
 bool VisitedGrid::in_extent(int ix, int iy) const {
   return ix >= min_ix_ && ix <= max_ix_ && iy >= min_iy_ && iy <= max_iy_;

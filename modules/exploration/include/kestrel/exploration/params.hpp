@@ -96,9 +96,6 @@ struct SrtParams {
                                           // first flies back along the path it came by to
                                           // where more is (srt_star_planner.hpp; not in
                                           // paper 002)
-  float retrace_seen_m = 0.0f;            // with retrace: a cell the nodes' scans showed free
-                                          // within this of the node counts as explored, not
-                                          // only a cell flown through; 0: flown cells only
   SteerUnflown steer = SteerUnflown::kAfterRestart;  // which draws face the building not yet
                                                     // flown (unflown_bearings.hpp; not in
                                                     // paper 002, whose draws kNever makes)

@@ -216,12 +216,8 @@ class SrtStarPlanner {
   void set_waypoint(Point2 p, TimeUs now);
   // Whether the segment a-b enters a keep-out box grown by the clearance (SrtParams::keep_out).
   bool crosses_keep_out(Point2 a, Point2 b) const;
-  // The arrival scan's returns: steer_unflown widens the flown grid's extent to them, and
-  // retrace_seen_m marks the cells they show free within its reach as seen.
-  uint32_t take_in_returns();
-  UnflownBearings::Counting retrace_counting() const {
-    return srt_.retrace_seen_m > 0.0f ? UnflownBearings::Counting::kUnflownUnseen : UnflownBearings::Counting::kUnflown;
-  }
+  // steer_unflown: widens the flown grid's extent to the arrival scan's returns.
+  uint32_t widen_extent_to_returns();
   // Drops the current node's frontiers whose sight line from the node crosses a keep-out box.
   uint32_t drop_frontiers_seen_through_keep_outs();
 

@@ -41,10 +41,8 @@ class UnflownBearings {
 
   UnflownBearings();
 
-  // Counts the unflown cells around `from` by bearing; with kUnflownUnseen, only those the
-  // grid's seen layer does not hold either. Returns the work units it cost.
-  enum class Counting : uint8_t { kUnflown, kUnflownUnseen };
-  uint32_t count(const VisitedGrid& grid, Point2 from, Counting counting = Counting::kUnflown);
+  // Counts the unflown cells around `from` by bearing. Returns the work units it cost.
+  uint32_t count(const VisitedGrid& grid, Point2 from);
   // Weighted unflown cells within +-kHalfConeBins bins of `bearing_rad` (world frame) at the
   // last count; 0 for a non-finite bearing.
   uint32_t score(float bearing_rad) const;

@@ -9,9 +9,7 @@
 // kSide x kSide cells of kCellM, centred on the first pose marked (64 m x 64 m: every built-in
 // world from its start); a mark sets the cell under the pose and its eight neighbours, so a
 // frontier counts as visited within about a cell and a half of the path flown. Outside the
-// grid nothing is marked and everything is unvisited. A second layer holds the cells the laser
-// has shown free (srt.retrace_seen_m), one cell a mark, without widening the extent. 1 KiB,
-// no heap.
+// grid nothing is marked and everything is unvisited. 512 bytes, no heap.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -36,10 +34,6 @@ class VisitedGrid {
   // at least there. Ignored before the first mark, off the grid, or for a non-finite p.
   void widen_extent(Point2 p);
   bool visited(Point2 p) const;
-  // Marks the cell of p as seen free. Ignored before the first mark(), off the grid, or for a
-  // non-finite p.
-  void mark_seen(Point2 p);
-  bool seen_cell(int ix, int iy) const;  // false outside the grid
   std::size_t marked_cells() const;
 
   // Cell of p, or false outside the grid (or before the first mark).
@@ -53,10 +47,7 @@ class VisitedGrid {
   void set(int ix, int iy, Extent extent);
   void include(int ix, int iy);  // widens the extent to a cell inside the grid
 
-  static bool bit(const std::array<uint64_t, kSide * kSide / 64>& layer, int ix, int iy);
-
   std::array<uint64_t, kSide * kSide / 64> bits_{};
-  std::array<uint64_t, kSide * kSide / 64> seen_bits_{};
   Point2 origin_{};  // world position of cell (0, 0)'s corner
   int min_ix_ = kSide, min_iy_ = kSide, max_ix_ = -1, max_iy_ = -1;  // of the marked cells
   bool anchored_ = false;

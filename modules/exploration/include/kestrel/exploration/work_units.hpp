@@ -23,8 +23,6 @@ inline constexpr uint32_t kFinish = 100;             // rounding the rays, findi
 inline constexpr uint32_t kRegionTest = 4;           // a point against a safe region's reach
 inline constexpr uint32_t kRegionAngle = 40;         // ... and against its sector (atan2)
 inline constexpr uint32_t kPathBeam = 10;            // one return against a straight path
-inline constexpr uint32_t kSeenStep = 4;             // one step along a beam marking its cell seen
-                                                     // (two divisions and floors in software)
 inline constexpr uint32_t kKeepOutTest = 20;         // a segment against the keep-out boxes
 inline constexpr uint32_t kFrontierScan = 16;        // frontiers per unit when picking one of a node
 inline constexpr uint32_t kGridCells = 3;            // visited-grid cells per unit: UnflownBearings::count,
