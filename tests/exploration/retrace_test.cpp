@@ -88,14 +88,19 @@ std::vector<Point2> flight_out() {
 struct RetraceFlight {
   std::unique_ptr<SrtStarPlanner> planner = std::make_unique<SrtStarPlanner>();
   std::vector<Point2> waypoints;  // issued while retracing
+  std::vector<Point2> arrivals;   // where the vehicle was when each counted as reached
   Pose2 end{};
 };
+
+enum class Arrival { kOnTheWaypoint, kAsEarlyAsAllowed };
 
 // The root at the start sees open space only to the west (behind the flight, so no waypoint
 // is ever reached on the way out); the flight out runs past the time limit, and the fresh tree
 // at its end is grown from a scan with walls 1 m away all round: it runs out at once. Then
 // the vehicle is put on each waypoint in turn.
-RetraceFlight fly(bool retrace, int retrace_legs = 300, bool sliced = false) {
+// Arrival::kAsEarlyAsAllowed: the vehicle stops short of each waypoint on the way back, on the
+// line it came by, 1 cm inside the distance the planner counts as arrived.
+RetraceFlight fly(bool retrace, int retrace_legs = 300, bool sliced = false, Arrival arrival = Arrival::kOnTheWaypoint) {
   RetraceFlight r;
   SrtParams srt;
   if (!sliced) srt.arrival_work_per_cycle = 0;
@@ -133,7 +138,13 @@ RetraceFlight fly(bool retrace, int retrace_legs = 300, bool sliced = false) {
   for (int k = 0; k < retrace_legs && r.planner->mode() == PlannerMode::kRetrace; ++k) {
     r.waypoints.push_back(r.planner->waypoint());
     const Point2 w = r.planner->waypoint();
-    r.end = {w.x, w.y, 0};
+    const float early = r.planner->retrace_arrival_m() - 0.01f;
+    const float dx = w.x - r.end.x, dy = w.y - r.end.y, len = std::hypot(dx, dy);
+    if (arrival == Arrival::kAsEarlyAsAllowed && early > 0.0f && len > early)
+      r.end = {w.x - early * dx / len, w.y - early * dy / len, 0};
+    else
+      r.end = {w.x, w.y, 0};
+    r.arrivals.push_back({r.end.x, r.end.y});
     t += Duration::from_s(1);
     EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
     for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
@@ -177,6 +188,26 @@ TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsS
   ASSERT_FALSE(r.planner->tree().nodes().empty());
   EXPECT_NEAR(r.planner->tree().nodes()[0].position.x, r.end.x, 1e-4f);
   EXPECT_LE(r.planner->trail().size(), 40u);  // cut back to where the retrace ended
+}
+
+// A leg's end counts as reached before the vehicle is on it (kRetraceArrivalM), but never so
+// early that the straight line on to the next leg's end cuts the corner by more than
+// kRetraceDeviationM: the early turn past a door's jamb was what the review's corner bound
+// missed (SRT alone, kinematic flights, touching the partition's end).
+TEST(SrtStarPlannerRetrace, TurningEarlyForTheNextLegCutsNoCornerByMoreThanTheDeviation) {
+  const RetraceFlight r = fly(true, 300, false, Arrival::kAsEarlyAsAllowed);
+  EXPECT_EQ(r.planner->retraces(), 1u);
+  ASSERT_GE(r.waypoints.size(), 10u);
+  std::size_t early = 0;
+  for (std::size_t k = 0; k + 1 < r.waypoints.size(); ++k) {
+    const float cut = distance_to_segment(r.arrivals[k], r.waypoints[k + 1], r.waypoints[k]);
+    EXPECT_LE(cut, SrtStarPlanner::kRetraceDeviationM + 0.01f) << "at " << r.waypoints[k].x << ", " << r.waypoints[k].y;
+    early += distance(r.arrivals[k], r.waypoints[k]) > 0.3f ? 1 : 0;
+  }
+  // On the straight stretches the turn comes well before the waypoint: the flight goes on.
+  EXPECT_GE(early, r.waypoints.size() / 2);
+  // And it still ends where the one-by-one flight ends, beside the unflown rooms.
+  EXPECT_LT(r.end.x, 19.0f);
 }
 
 // The trail's count and the arrival steps in slices, as on the Verdex: the same way back.

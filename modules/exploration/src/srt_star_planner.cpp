@@ -192,7 +192,7 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     const bool blocked = dist < guidance_.blocked_arrival_distance_m &&
                          (now - closest_at_).seconds() > static_cast<double>(guidance_.blocked_time_s);
     const bool arrived = dist < radius || blocked ||
-                         (mode_ == PlannerMode::kRetrace && trail_next_ > trail_best_ && dist < kRetraceArrivalM);
+                         (mode_ == PlannerMode::kRetrace && dist < retrace_arrival_m_);
     if (blocked && dist >= radius && mode_ != PlannerMode::kFinished && mode_ != PlannerMode::kLookBack)
       ++blocked_arrivals_;
     const bool late = (now - waypoint_time_).seconds() > static_cast<double>(guidance_.waypoint_time_limit_s);
@@ -591,7 +591,7 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   const std::size_t newest = trail_.size() - 1;
   trail_reached_ = trail_.earliest_near(trail_best_, newest, trail_.point(newest), kRetraceLoopM);
   trail_next_ = next_leg(trail_reached_, {job_pose_.x, job_pose_.y});
-  set_waypoint(trail_.point(trail_next_), now);
+  set_retrace_waypoint({job_pose_.x, job_pose_.y}, now);
   step_ = Step::kNone;
   return 1;
 }
@@ -626,8 +626,32 @@ Status SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan,
   const Point2 at = trail_.point(trail_next_);
   trail_reached_ = trail_.earliest_near(trail_best_, trail_next_, at, kRetraceLoopM);
   trail_next_ = next_leg(trail_reached_, at);
-  set_waypoint(trail_.point(trail_next_), now);
+  set_retrace_waypoint(at, now);
   return Status::kOk;
+}
+
+void SrtStarPlanner::set_retrace_waypoint(Point2 leg_start, TimeUs now) {
+  const Point2 end = trail_.point(trail_next_);
+  set_waypoint(end, now);
+  // The last leg's end is arrived at within d. Before that, a vehicle that turns for the next
+  // leg kRetraceArrivalM short of this one's end would cut the corner there (by up to 0.8 m,
+  // into a door's jamb: SRT alone touched the partition's end on 6 of 10 kinematic flights):
+  // arriving r short of it and flying straight on passes within r sin(turn) of it, so r is
+  // what keeps that within kRetraceDeviationM, and a turn over 90 degrees is arrived at within
+  // d. The next leg is the one advance_retrace will take: the trail does not change meanwhile.
+  retrace_arrival_m_ = 0.0f;
+  if (trail_next_ <= trail_best_) return;
+  const std::size_t reached = trail_.earliest_near(trail_best_, trail_next_, end, kRetraceLoopM);
+  const Point2 next = trail_.point(next_leg(reached, end));
+  const float ax = end.x - leg_start.x, ay = end.y - leg_start.y, bx = next.x - end.x, by = next.y - end.y;
+  const float la = std::hypot(ax, ay), lb = std::hypot(bx, by);
+  if (!(la > 0.0f && lb > 0.0f)) return;
+  const float cos_turn = (ax * bx + ay * by) / (la * lb);
+  const float sin_turn = std::fabs(ax * by - ay * bx) / (la * lb);
+  if (cos_turn <= 0.0f) return;
+  // Never beyond the next leg's length either: the bound above assumes it is at least r long.
+  const float early = sin_turn > 0.0f ? kRetraceDeviationM / sin_turn : kRetraceArrivalM;
+  retrace_arrival_m_ = std::min({kRetraceArrivalM, early, lb});
 }
 
 uint32_t SrtStarPlanner::run_out_on_root(TimeUs now) {

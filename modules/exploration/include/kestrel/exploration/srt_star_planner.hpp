@@ -44,9 +44,10 @@
 // kRetraceGainQuarters / 4 times those where the vehicle is and at least kRetraceMinUnflown,
 // and that point lies kRetraceStepM or more away, the vehicle flies back along the trail
 // (kRetrace: legs of up to kRetraceStepM that pass within kRetraceDeviationM of every trail
-// point they skip, each end arrived at within kRetraceArrivalM, the last within d; a loop is
-// skipped where an earlier point lies within kRetraceLoopM of the one reached, the vehicle's
-// own place when the retrace begins included) and a fresh tree (steered, as any after a
+// point they skip, each end arrived at within kRetraceArrivalM or as much less as keeps the turn
+// onto the next leg within kRetraceDeviationM of it, within d past 90 degrees, the last within
+// d; a loop is skipped where an earlier point lies within kRetraceLoopM of the one reached, the
+// vehicle's own place when the retrace begins included) and a fresh tree (steered, as any after a
 // restart, even after a steering pause) grows where it ends; the trail is cut back to there
 // (or, when the time limit ends the retrace, to the point last reached). Else the run-out goes
 // on as above; the trail is looked along at most once until a forward waypoint is reached. The trail is not recorded while
@@ -164,13 +165,14 @@ class SrtStarPlanner {
   bool steer_paused() const { return steer_paused_; }
   uint32_t steered_draws() const { return steered_draws_; }  // frontiers drawn by steering
   uint32_t retraces() const { return retraces_; }            // retraces begun (srt.retrace)
+  float retrace_arrival_m() const { return retrace_arrival_m_; }  // of the retrace's waypoint
   const FlownHistory& trail() const { return trail_; }
 
   static constexpr std::size_t kRetraceStride = 4;       // trail points between two counts
   static constexpr uint32_t kRetraceGainQuarters = 5;    // the best point against where it is
   static constexpr uint32_t kRetraceMinUnflown = 64;     // weighted cells (unflown_bearings.hpp)
   static constexpr float kRetraceStepM = 2.0f;
-  static constexpr float kRetraceArrivalM = 0.8f;
+  static constexpr float kRetraceArrivalM = 0.8f;  // at most; less before a turn (no corner cut)
   // An earlier point this near is the same place: under FlownHistory's spacing, so that the
   // point before on the same path is not taken for one.
   static constexpr float kRetraceLoopM = 0.4f;
@@ -210,6 +212,9 @@ class SrtStarPlanner {
   std::size_t next_leg(std::size_t from, Point2 at) const;
   // Flying back along the trail: the next trail point kRetraceStepM on, or the fresh tree.
   Status advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now);
+  // The waypoint is trail point trail_next_, the leg to it starting at `leg_start`; sets how
+  // early it counts as arrived at (retrace_arrival_m_).
+  void set_retrace_waypoint(Point2 leg_start, TimeUs now);
   // The straight path from the arrival pose to `p` against the returns of the arrival scan.
   uint32_t start_path(Point2 p, bool backtrack);
   uint32_t check_path(uint32_t budget, TimeUs now);
@@ -263,6 +268,7 @@ class SrtStarPlanner {
                                 // retrace's current trail point
   std::size_t trail_best_ = 0;  // the trail point with the most unflown cells in reach
   std::size_t trail_reached_ = 0;  // retracing: the earliest visit of the point last reached
+  float retrace_arrival_m_ = 0;    // retracing: the waypoint counts as reached this near (or d)
   uint32_t unflown_best_ = 0, unflown_here_ = 0;
   uint32_t retraces_ = 0;
 
