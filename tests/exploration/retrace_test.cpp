@@ -100,14 +100,15 @@ enum class Arrival { kOnTheWaypoint, kAsEarlyAsAllowed };
 // the vehicle is put on each waypoint in turn.
 // Arrival::kAsEarlyAsAllowed: the vehicle stops short of each waypoint on the way back, on the
 // line it came by, 1 cm inside the distance the planner counts as arrived.
-RetraceFlight fly(bool retrace, int retrace_legs = 300, bool sliced = false, Arrival arrival = Arrival::kOnTheWaypoint) {
+RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, bool sliced = false, Arrival arrival = Arrival::kOnTheWaypoint,
+                  bool guarded = false) {
   RetraceFlight r;
   SrtParams srt;
   if (!sliced) srt.arrival_work_per_cycle = 0;
-  srt.retrace = retrace;
+  srt.retrace = mode;
   GuidanceParams g;
   g.waypoint_time_limit_s = 1000.0f;
-  EXPECT_EQ(r.planner->configure(srt, g), Status::kOk);
+  EXPECT_EQ(r.planner->configure(srt, g, guarded), Status::kOk);
   LaserScan west_open = uniform_scan(kUrg, 1000);
   for (int i = 0; i < west_open.beam_count; ++i)
     if (std::fabs(west_open.angle_of(i)) < 0.6) west_open.range_mm[i] = range_code::kNoReturn;
@@ -154,7 +155,7 @@ RetraceFlight fly(bool retrace, int retrace_legs = 300, bool sliced = false, Arr
 }
 
 TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsSkippingTheLoop) {
-  const RetraceFlight r = fly(true);
+  const RetraceFlight r = fly(RetraceMode::kAlways);
   EXPECT_EQ(r.planner->retraces(), 1u);
   ASSERT_GE(r.waypoints.size(), 10u);
   EXPECT_NE(r.planner->mode(), PlannerMode::kRetrace);
@@ -195,7 +196,7 @@ TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsS
 // kRetraceDeviationM: the early turn past a door's jamb was what the review's corner bound
 // missed (SRT alone, kinematic flights, touching the partition's end).
 TEST(SrtStarPlannerRetrace, TurningEarlyForTheNextLegCutsNoCornerByMoreThanTheDeviation) {
-  const RetraceFlight r = fly(true, 300, false, Arrival::kAsEarlyAsAllowed);
+  const RetraceFlight r = fly(RetraceMode::kAlways, 300, false, Arrival::kAsEarlyAsAllowed);
   EXPECT_EQ(r.planner->retraces(), 1u);
   ASSERT_GE(r.waypoints.size(), 10u);
   std::size_t early = 0;
@@ -212,8 +213,8 @@ TEST(SrtStarPlannerRetrace, TurningEarlyForTheNextLegCutsNoCornerByMoreThanTheDe
 
 // The trail's count and the arrival steps in slices, as on the Verdex: the same way back.
 TEST(SrtStarPlannerRetrace, SlicedTheWayBackIsTheOneShotOne) {
-  const RetraceFlight whole = fly(true);
-  const RetraceFlight sliced = fly(true, 300, true);
+  const RetraceFlight whole = fly(RetraceMode::kAlways);
+  const RetraceFlight sliced = fly(RetraceMode::kAlways, 300, true);
   ASSERT_EQ(sliced.planner->retraces(), 1u);
   ASSERT_EQ(sliced.waypoints.size(), whole.waypoints.size());
   for (std::size_t i = 0; i < whole.waypoints.size(); ++i) {
@@ -227,7 +228,7 @@ TEST(SrtStarPlannerRetrace, SlicedTheWayBackIsTheOneShotOne) {
 // is, and the path flown ends there too, not where the retrace began (a later retrace would
 // fly the jump between them).
 TEST(SrtStarPlannerRetrace, TheTimeLimitOnTheWayBackCutsTheHistoryToWhereTheVehicleIs) {
-  RetraceFlight r = fly(true, 5);
+  RetraceFlight r = fly(RetraceMode::kAlways, 5);
   ASSERT_EQ(r.planner->mode(), PlannerMode::kRetrace);
   const std::size_t before = r.planner->trail().size();
   // Stuck half-way to the next waypoint.
@@ -245,12 +246,39 @@ TEST(SrtStarPlannerRetrace, TheTimeLimitOnTheWayBackCutsTheHistoryToWhereTheVehi
 }
 
 TEST(SrtStarPlannerRetrace, OffTheRunOutGoesOnWhereTheVehicleIs) {
-  const RetraceFlight r = fly(false);
+  const RetraceFlight r = fly(RetraceMode::kOff);
   EXPECT_EQ(r.planner->retraces(), 0u);
   EXPECT_TRUE(r.waypoints.empty());
   EXPECT_EQ(r.planner->restarts(RestartReason::kRetraced), 0u);
   EXPECT_EQ(r.planner->mode(), PlannerMode::kLookBack);
   EXPECT_FLOAT_EQ(r.planner->waypoint().x, 38.0f);
+}
+
+// kGuarded: only a planner whose explorer's commands the approach limiter guards (the blend)
+// flies back along a path it may have flown close to a jamb; SRT alone does not.
+TEST(SrtStarPlannerRetrace, GuardedRetracesOnlyAGuardedPlanner) {
+  const RetraceFlight unguarded = fly(RetraceMode::kGuarded);
+  EXPECT_FALSE(unguarded.planner->retraces_enabled());
+  EXPECT_EQ(unguarded.planner->retraces(), 0u);
+  EXPECT_EQ(unguarded.planner->trail().size(), 0u);  // nor is the path kept
+  const RetraceFlight guarded = fly(RetraceMode::kGuarded, 300, false, Arrival::kOnTheWaypoint, true);
+  EXPECT_TRUE(guarded.planner->retraces_enabled());
+  EXPECT_EQ(guarded.planner->retraces(), 1u);
+  EXPECT_LT(guarded.end.x, 19.0f);
+}
+
+TEST(SrtStarPlannerRetrace, ModesRoundTripByNameAndOthersAreRefused) {
+  for (RetraceMode m : kRetraceModes) {
+    const Result<RetraceMode> back = parse_retrace_mode(to_string(m));
+    ASSERT_TRUE(back.ok()) << to_string(m);
+    EXPECT_EQ(back.value(), m);
+  }
+  EXPECT_FALSE(parse_retrace_mode("yes").ok());
+  EXPECT_FALSE(parse_retrace_mode(nullptr).ok());
+  SrtParams srt;
+  srt.retrace = static_cast<RetraceMode>(7);
+  SrtStarPlanner planner;
+  EXPECT_EQ(planner.configure(srt, GuidanceParams{}), Status::kInvalidArgument);
 }
 
 }  // namespace

@@ -122,10 +122,15 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "yes"}}}, mem), "");
   // A run-out retracing the path flown.
   FlightOptions retrace;
-  EXPECT_FALSE(retrace.stack.explorer.srt.retrace);
+  EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kOff);
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "on"}}}, retrace), "");
-  EXPECT_TRUE(retrace.stack.explorer.srt.retrace);
-  EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "1"}}}, retrace), "");
+  EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kAlways);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "guarded"}}}, retrace), "");
+  EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kGuarded);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "off"}}}, retrace), "");
+  EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kOff);
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "1"}}}, retrace),
+            "srt_retrace: expected off, guarded or on, got '1'");
   // Frontiers kept beside walls.
   FlightOptions rescue;
   EXPECT_FALSE(rescue.stack.explorer.srt.rescue_frontiers);

@@ -110,7 +110,6 @@ bool* explorer_switch(const std::string& key, exploration::Params& p) {
   if (key == "srt_memory") return &p.srt.prefer_unvisited;
   if (key == "srt_rescue") return &p.srt.rescue_frontiers;
   if (key == "srt_beam_jumps") return &p.srt.discontinuity_needs_beam_jump;
-  if (key == "srt_retrace") return &p.srt.retrace;
   return nullptr;
 }
 
@@ -199,6 +198,10 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       const Result<exploration::SteerUnflown> s = exploration::parse_steer_unflown(value.c_str());
       if (!s.ok()) return "srt_steer: expected off, restarted, every or root, got '" + value + "'";
       out.stack.explorer.srt.steer = s.value();
+    } else if (key == "srt_retrace" && kind == mission::MissionKind::kExplore) {
+      const Result<exploration::RetraceMode> m = exploration::parse_retrace_mode(value.c_str());
+      if (!m.ok()) return "srt_retrace: expected off, guarded or on, got '" + value + "'";
+      out.stack.explorer.srt.retrace = m.value();
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
     } else if (bool* on = explorer_switch(key, out.stack.explorer); on != nullptr && kind == mission::MissionKind::kExplore) {

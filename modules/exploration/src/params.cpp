@@ -20,6 +20,11 @@ bool known(SteerUnflown mode) {
     if (s == mode) return true;
   return false;
 }
+bool known(RetraceMode mode) {
+  for (RetraceMode m : kRetraceModes)
+    if (m == mode) return true;
+  return false;
+}
 }  // namespace
 
 const char* to_string(SteerUnflown s) {
@@ -43,6 +48,25 @@ Result<SteerUnflown> parse_steer_unflown(const char* name) {
   return Status::kInvalidArgument;
 }
 
+const char* to_string(RetraceMode m) {
+  switch (m) {
+    case RetraceMode::kOff:
+      return "off";
+    case RetraceMode::kGuarded:
+      return "guarded";
+    case RetraceMode::kAlways:
+      return "on";
+  }
+  return "unknown";
+}
+
+Result<RetraceMode> parse_retrace_mode(const char* name) {
+  if (name == nullptr) return Status::kInvalidArgument;
+  for (RetraceMode m : kRetraceModes)
+    if (std::strcmp(name, to_string(m)) == 0) return m;
+  return Status::kInvalidArgument;
+}
+
 Status Params::validate() const {
   const bool wall_ok = positive(wall.target_range_m) && positive(wall.safe_range_m) &&
                        wall.safe_range_m < wall.target_range_m && non_negative(wall.gain_wf) &&
@@ -52,7 +76,7 @@ Status Params::validate() const {
                       positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
                       srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
                       non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1 &&
-                      known(srt.steer);
+                      known(srt.steer) && known(srt.retrace);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
     const KeepOut& k = srt.keep_out[i];

@@ -170,7 +170,7 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
   // meanwhile (sliced and one-shot steps agree), and the vehicle waits on the spot.
   if (step_ == Step::kNone) visited_.mark({pose.x, pose.y});
   // The trail keeps its indices while the vehicle flies back along it.
-  if (srt_.retrace && step_ == Step::kNone && mode_ != PlannerMode::kRetrace) trail_.record({pose.x, pose.y});
+  if (retraces_enabled() && step_ == Step::kNone && mode_ != PlannerMode::kRetrace) trail_.record({pose.x, pose.y});
 
   if (step_ != Step::kNone) {
     // An arrival step is under way: this call only continues it.
@@ -552,7 +552,7 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
     step_ = Step::kNone;
     return 1;
   }
-  if (srt_.retrace && !trail_scanned_ && trail_.size() > kRetraceStride) {
+  if (retraces_enabled() && !trail_scanned_ && trail_.size() > kRetraceStride) {
     // Where else on the path flown is there more the vehicle has not flown? Counted point by
     // point (scan_trail); what the root's frontiers would do comes after.
     trail_scanned_ = true;

@@ -66,6 +66,24 @@ const char* to_string(SteerUnflown s);
 // kInvalidArgument for any other name, or nullptr.
 Result<SteerUnflown> parse_steer_unflown(const char* name);
 
+// When a tree that runs out on its root first flies back along the path flown to where more is
+// unflown (srt_star_planner.hpp, srt.retrace; not in paper 002). The way back replays the path
+// flown, which is only as far from the walls as the flight out was: SRT alone, whose position
+// set-points nothing guards, passed the kinematic building's 1.2 m gap 0.2 m from its jamb and
+// with the retrace touched it on the way back on 3 of 10 flights (one more touched a door
+// jamb seen edge-on, in a flight the retrace had changed), so kGuarded retraces only a planner
+// whose explorer's commands pass the approach limiter (the blend).
+enum class RetraceMode : uint8_t {
+  kOff,
+  kGuarded,
+  kAlways,
+};
+inline constexpr RetraceMode kRetraceModes[] = {RetraceMode::kOff, RetraceMode::kGuarded, RetraceMode::kAlways};
+// "off", "guarded", "on" (kestrel-sim's srt_retrace=...).
+const char* to_string(RetraceMode m);
+// kInvalidArgument for any other name, or nullptr.
+Result<RetraceMode> parse_retrace_mode(const char* name);
+
 struct SrtParams {
   uint16_t sector_count = 32;             // sectors the scan is divided into (<= kMaxSectors)
   float perception_range_m = 3.5f;        // R_p: a sector with no return closer is obstacle-free
@@ -92,10 +110,10 @@ struct SrtParams {
                                           // return it starts within the clearance of, and an open
                                           // sector's frontier with no path from its node goes to
                                           // an ancestor (srt_star_planner.hpp; not in paper 002)
-  bool retrace = false;                   // a tree that runs out with little unflown in reach
-                                          // first flies back along the path it came by to
-                                          // where more is (srt_star_planner.hpp; not in
-                                          // paper 002)
+  RetraceMode retrace = RetraceMode::kOff;  // a tree that runs out with little unflown in reach
+                                            // first flies back along the path it came by to
+                                            // where more is (srt_star_planner.hpp; not in
+                                            // paper 002)
   SteerUnflown steer = SteerUnflown::kAfterRestart;  // which draws face the building not yet
                                                     // flown (unflown_bearings.hpp; not in
                                                     // paper 002, whose draws kNever makes)

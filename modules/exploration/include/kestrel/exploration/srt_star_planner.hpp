@@ -37,7 +37,8 @@
 // waypoint is reached. Poses given while an arrival step is under way are not remembered as
 // flown.
 //
-// With srt.retrace, a tree that runs out on its root first looks along the path flown
+// With srt.retrace (kAlways, or kGuarded for a guarded planner: params.hpp), a tree that runs
+// out on its root first looks along the path flown
 // (FlownHistory, recorded from the poses given, loops kept):
 // UnflownBearings counted at every kRetraceStride-th trail point, from the newest back, as work
 // items of the arrival step. If the most unflown cells any trail point has in reach are at least
@@ -165,6 +166,10 @@ class SrtStarPlanner {
   bool steer_paused() const { return steer_paused_; }
   uint32_t steered_draws() const { return steered_draws_; }  // frontiers drawn by steering
   uint32_t retraces() const { return retraces_; }            // retraces begun (srt.retrace)
+  // srt.retrace holds for this planner: kAlways, or kGuarded and the planner is guarded.
+  bool retraces_enabled() const {
+    return srt_.retrace == RetraceMode::kAlways || (srt_.retrace == RetraceMode::kGuarded && guarded_);
+  }
   float retrace_arrival_m() const { return retrace_arrival_m_; }  // of the retrace's waypoint
   const FlownHistory& trail() const { return trail_; }
 
