@@ -67,6 +67,28 @@ TEST(Explorer, SmallerMarginsConfigureWhenConsistent) {
   EXPECT_EQ(b->configure(p, g), Status::kOk);
 }
 
+// srt.retrace = kGuarded: the blend, whose commands the approach limiter guards, retraces; SRT
+// alone, and a blend without the limiter, do not (params.hpp, RetraceMode).
+TEST(Explorer, AGuardedRetraceIsTheBlendsWithItsLimiterOnly) {
+  const BeamGeometry g = BeamGeometry::of(uniform_scan(kUrg, 2000));
+  Params p;
+  p.srt.retrace = RetraceMode::kGuarded;
+  auto b = std::make_unique<BlendExplorer>();
+  auto s = std::make_unique<SrtExplorer>();
+  ASSERT_EQ(b->configure(p, g), Status::kOk);
+  ASSERT_EQ(s->configure(p, g), Status::kOk);
+  EXPECT_TRUE(b->planner()->retraces_enabled());
+  EXPECT_FALSE(s->planner()->retraces_enabled());
+  p.approach.enabled = false;
+  ASSERT_EQ(b->configure(p, g), Status::kOk);
+  EXPECT_FALSE(b->planner()->retraces_enabled());
+  p.srt.retrace = RetraceMode::kAlways;  // as told, guarded or not
+  ASSERT_EQ(b->configure(p, g), Status::kOk);
+  ASSERT_EQ(s->configure(p, g), Status::kOk);
+  EXPECT_TRUE(b->planner()->retraces_enabled());
+  EXPECT_TRUE(s->planner()->retraces_enabled());
+}
+
 TEST(BlendExplorer, CommandIsWallFollowingPlusFrontierVelocityTowardsTheWaypoint) {
   auto ex = std::make_unique<BlendExplorer>();
   Params p;

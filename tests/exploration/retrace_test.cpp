@@ -98,8 +98,8 @@ enum class Arrival { kOnTheWaypoint, kAsEarlyAsAllowed };
 // is ever reached on the way out); the flight out runs past the time limit, and the fresh tree
 // at its end is grown from a scan with walls 1 m away all round: it runs out at once. Then
 // the vehicle is put on each waypoint in turn.
-// Arrival::kAsEarlyAsAllowed: the vehicle stops short of each waypoint on the way back, on the
-// line it came by, 1 cm inside the distance the planner counts as arrived.
+// Arrival::kAsEarlyAsAllowed: on the way back the vehicle flies straight at each waypoint from
+// where it was, and turns for the next one where the planner first gives it.
 RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, bool sliced = false, Arrival arrival = Arrival::kOnTheWaypoint,
                   bool guarded = false) {
   RetraceFlight r;
@@ -139,13 +139,26 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, bool sliced = false,
   for (int k = 0; k < retrace_legs && r.planner->mode() == PlannerMode::kRetrace; ++k) {
     r.waypoints.push_back(r.planner->waypoint());
     const Point2 w = r.planner->waypoint();
-    const float early = r.planner->retrace_arrival_m() - 0.01f;
-    const float dx = w.x - r.end.x, dy = w.y - r.end.y, len = std::hypot(dx, dy);
-    if (arrival == Arrival::kAsEarlyAsAllowed && early > 0.0f && len > early)
-      r.end = {w.x - early * dx / len, w.y - early * dy / len, 0};
-    else
-      r.end = {w.x, w.y, 0};
-    r.arrivals.push_back({r.end.x, r.end.y});
+    if (arrival == Arrival::kAsEarlyAsAllowed) {
+      // In 2 cm steps, 0.1 s apart, until the planner moves on.
+      const Point2 from{r.end.x, r.end.y};
+      const int steps = std::max(1, static_cast<int>(std::ceil(distance(from, w) / 0.02f)));
+      for (int i = 1; i <= steps; ++i) {
+        const float f = static_cast<float>(i) / static_cast<float>(steps);
+        r.end = {from.x + f * (w.x - from.x), from.y + f * (w.y - from.y), 0};
+        t += Duration::from_ms(100);
+        EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
+        for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
+          EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
+        if (r.planner->mode() != PlannerMode::kRetrace || r.planner->waypoint().x != w.x ||
+            r.planner->waypoint().y != w.y)
+          break;
+      }
+      r.arrivals.push_back({r.end.x, r.end.y});
+      continue;
+    }
+    r.end = {w.x, w.y, 0};
+    r.arrivals.push_back({w.x, w.y});
     t += Duration::from_s(1);
     EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
     for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
@@ -199,11 +212,22 @@ TEST(SrtStarPlannerRetrace, TurningEarlyForTheNextLegCutsNoCornerByMoreThanTheDe
   const RetraceFlight r = fly(RetraceMode::kAlways, 300, false, Arrival::kAsEarlyAsAllowed);
   EXPECT_EQ(r.planner->retraces(), 1u);
   ASSERT_GE(r.waypoints.size(), 10u);
+  const std::vector<Point2> out = flight_out();
   std::size_t early = 0;
   for (std::size_t k = 0; k + 1 < r.waypoints.size(); ++k) {
     const float cut = distance_to_segment(r.arrivals[k], r.waypoints[k + 1], r.waypoints[k]);
     EXPECT_LE(cut, SrtStarPlanner::kRetraceDeviationM + 0.01f) << "at " << r.waypoints[k].x << ", " << r.waypoints[k].y;
     early += distance(r.arrivals[k], r.waypoints[k]) > 0.3f ? 1 : 0;
+    // The line actually flown, from where the vehicle turned, keeps to the path flown out.
+    for (int i = 1; i < 10; ++i) {
+      const float f = 0.1f * static_cast<float>(i);
+      const Point2 q{r.arrivals[k].x + f * (r.waypoints[k + 1].x - r.arrivals[k].x),
+                     r.arrivals[k].y + f * (r.waypoints[k + 1].y - r.arrivals[k].y)};
+      float nearest = 1e9f;
+      for (const Point2& p : out) nearest = std::min(nearest, distance(p, q));
+      EXPECT_LT(nearest, 0.35f) << "the turn at " << r.waypoints[k].x << ", " << r.waypoints[k].y << " leaves the path at "
+                                << q.x << ", " << q.y;
+    }
   }
   // On the straight stretches the turn comes well before the waypoint: the flight goes on.
   EXPECT_GE(early, r.waypoints.size() / 2);

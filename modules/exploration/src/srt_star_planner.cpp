@@ -178,7 +178,11 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
   } else {
     const float dx = waypoint_.x - pose.x, dy = waypoint_.y - pose.y;
-    const float radius = aligning_ ? 0.5f * guidance_.arrival_distance_m : guidance_.arrival_distance_m;
+    // A retrace's legs but the last are arrived at within their own distance, smaller or larger
+    // than d (set_retrace_waypoint).
+    const float radius = mode_ == PlannerMode::kRetrace && retrace_arrival_m_ > 0.0f ? retrace_arrival_m_
+                         : aligning_                                                ? 0.5f * guidance_.arrival_distance_m
+                                                                                    : guidance_.arrival_distance_m;
     const float dist = std::sqrt(dx * dx + dy * dy);
     if (dist < closest_m_ - kProgressM) {
       closest_m_ = dist;
@@ -191,8 +195,7 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     // while, it has arrived as closely as the walls allow.
     const bool blocked = dist < guidance_.blocked_arrival_distance_m &&
                          (now - closest_at_).seconds() > static_cast<double>(guidance_.blocked_time_s);
-    const bool arrived = dist < radius || blocked ||
-                         (mode_ == PlannerMode::kRetrace && dist < retrace_arrival_m_);
+    const bool arrived = dist < radius || blocked;
     if (blocked && dist >= radius && mode_ != PlannerMode::kFinished && mode_ != PlannerMode::kLookBack)
       ++blocked_arrivals_;
     const bool late = (now - waypoint_time_).seconds() > static_cast<double>(guidance_.waypoint_time_limit_s);
@@ -633,14 +636,17 @@ Status SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan,
 void SrtStarPlanner::set_retrace_waypoint(Point2 leg_start, TimeUs now) {
   const Point2 end = trail_.point(trail_next_);
   set_waypoint(end, now);
-  // The last leg's end is arrived at within d. Before that, a vehicle that turns for the next
-  // leg kRetraceArrivalM short of this one's end would cut the corner there (by up to 0.8 m,
-  // into a door's jamb: SRT alone touched the partition's end on 6 of 10 kinematic flights):
-  // arriving r short of it and flying straight on passes within r sin(turn) of it, so r is
-  // what keeps that within kRetraceDeviationM, and a turn over 90 degrees is arrived at within
-  // d. The next leg is the one advance_retrace will take: the trail does not change meanwhile.
+  // The last leg's end is arrived at within d (0 here). Before that, a vehicle that turns for
+  // the next leg r short of this one's end, on the line it came by, passes within r sin(turn)
+  // of it for a turn up to 90 degrees, and within r past that. With r at 0.8 m (or at d) the
+  // turn cut corners past the 0.15 m the legs keep to, into a door's jamb: SRT alone touched
+  // the kinematic building's partition end on 6 of 10 flights. So r keeps the cut within
+  // kRetraceDeviationM: kRetraceDeviationM / sin(turn), between kRetraceDeviationM and
+  // kRetraceArrivalM. The next leg is the one advance_retrace will take: the trail does not
+  // change meanwhile.
   retrace_arrival_m_ = 0.0f;
   if (trail_next_ <= trail_best_) return;
+  retrace_arrival_m_ = kRetraceDeviationM;
   const std::size_t reached = trail_.earliest_near(trail_best_, trail_next_, end, kRetraceLoopM);
   const Point2 next = trail_.point(next_leg(reached, end));
   const float ax = end.x - leg_start.x, ay = end.y - leg_start.y, bx = next.x - end.x, by = next.y - end.y;
@@ -649,9 +655,8 @@ void SrtStarPlanner::set_retrace_waypoint(Point2 leg_start, TimeUs now) {
   const float cos_turn = (ax * bx + ay * by) / (la * lb);
   const float sin_turn = std::fabs(ax * by - ay * bx) / (la * lb);
   if (cos_turn <= 0.0f) return;
-  // Never beyond the next leg's length either: the bound above assumes it is at least r long.
   const float early = sin_turn > 0.0f ? kRetraceDeviationM / sin_turn : kRetraceArrivalM;
-  retrace_arrival_m_ = std::min({kRetraceArrivalM, early, lb});
+  retrace_arrival_m_ = std::clamp(early, kRetraceDeviationM, kRetraceArrivalM);
 }
 
 uint32_t SrtStarPlanner::run_out_on_root(TimeUs now) {

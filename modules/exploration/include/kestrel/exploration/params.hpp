@@ -69,10 +69,10 @@ Result<SteerUnflown> parse_steer_unflown(const char* name);
 // When a tree that runs out on its root first flies back along the path flown to where more is
 // unflown (srt_star_planner.hpp, srt.retrace; not in paper 002). The way back replays the path
 // flown, which is only as far from the walls as the flight out was: SRT alone, whose position
-// set-points nothing guards, passed the kinematic building's 1.2 m gap 0.2 m from its jamb and
-// with the retrace touched it on the way back on 3 of 10 flights (one more touched a door
-// jamb seen edge-on, in a flight the retrace had changed), so kGuarded retraces only a planner
-// whose explorer's commands pass the approach limiter (the blend).
+// set-points nothing guards, flies the kinematic building's 1.2 m gap 0.2 m from its jamb, and
+// with the retrace on it grazed a wall on 4 of 10 flights (0.12-0.19 m from the vehicle's
+// centre, its radius 0.2 m; without, none comes nearer than 0.21 m), so kGuarded retraces only
+// a planner whose explorer's commands pass the approach limiter (the blend).
 enum class RetraceMode : uint8_t {
   kOff,
   kGuarded,

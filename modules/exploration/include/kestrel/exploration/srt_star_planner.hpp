@@ -45,9 +45,9 @@
 // kRetraceGainQuarters / 4 times those where the vehicle is and at least kRetraceMinUnflown,
 // and that point lies kRetraceStepM or more away, the vehicle flies back along the trail
 // (kRetrace: legs of up to kRetraceStepM that pass within kRetraceDeviationM of every trail
-// point they skip, each end arrived at within kRetraceArrivalM or as much less as keeps the turn
-// onto the next leg within kRetraceDeviationM of it, within d past 90 degrees, the last within
-// d; a loop is skipped where an earlier point lies within kRetraceLoopM of the one reached, the
+// point they skip, each end but the last arrived at within the distance, from kRetraceDeviationM
+// to kRetraceArrivalM, that keeps the turn onto the next leg within kRetraceDeviationM of it,
+// the last within d; a loop is skipped where an earlier point lies within kRetraceLoopM of the one reached, the
 // vehicle's own place when the retrace begins included) and a fresh tree (steered, as any after a
 // restart, even after a steering pause) grows where it ends; the trail is cut back to there
 // (or, when the time limit ends the retrace, to the point last reached). Else the run-out goes
@@ -170,7 +170,8 @@ class SrtStarPlanner {
   bool retraces_enabled() const {
     return srt_.retrace == RetraceMode::kAlways || (srt_.retrace == RetraceMode::kGuarded && guarded_);
   }
-  float retrace_arrival_m() const { return retrace_arrival_m_; }  // of the retrace's waypoint
+  // How near the retrace's waypoint counts as reached; 0 for the last, reached within d.
+  float retrace_arrival_m() const { return retrace_arrival_m_; }
   const FlownHistory& trail() const { return trail_; }
 
   static constexpr std::size_t kRetraceStride = 4;       // trail points between two counts
@@ -273,7 +274,7 @@ class SrtStarPlanner {
                                 // retrace's current trail point
   std::size_t trail_best_ = 0;  // the trail point with the most unflown cells in reach
   std::size_t trail_reached_ = 0;  // retracing: the earliest visit of the point last reached
-  float retrace_arrival_m_ = 0;    // retracing: the waypoint counts as reached this near (or d)
+  float retrace_arrival_m_ = 0;    // retracing: the waypoint counts as reached this near (0: d)
   uint32_t unflown_best_ = 0, unflown_here_ = 0;
   uint32_t retraces_ = 0;
 
