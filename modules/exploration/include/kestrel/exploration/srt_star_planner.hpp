@@ -47,12 +47,12 @@
 // (kRetrace: legs of up to kRetraceStepM that pass within kRetraceDeviationM of every trail
 // point they skip, each end but the last arrived at within the distance, from kRetraceDeviationM
 // to kRetraceArrivalM, that keeps the turn onto the next leg within kRetraceDeviationM of it,
-// the last within d; a loop is skipped where an earlier point lies within kRetraceLoopM of the one reached, the
-// vehicle's own place when the retrace begins included) and a fresh tree (steered, as any after a
-// restart, even after a steering pause) grows where it ends; the trail is cut back to there
-// (or, when the time limit ends the retrace, to the point last reached). Else the run-out goes
-// on as above; the trail is looked along at most once until a forward waypoint is reached. The trail is not recorded while
-// retracing; the time limit during a retrace restarts exploration where the vehicle is, as for
+// the last within d; a loop is skipped where an earlier point lies within kRetraceLoopM of the
+// one reached, the vehicle's own place when the retrace begins included) and a fresh tree
+// (steered, as any after a restart, even after a steering pause) grows where it ends; the trail
+// is cut back to there (or, when the time limit ends the retrace, to the point last reached).
+// Else the run-out goes on as above; the trail is looked along at most once until a forward
+// waypoint is reached. The trail is not recorded while retracing; the time limit during a retrace restarts exploration where the vehicle is, as for
 // any waypoint. Paper 002 has no memory across its restarts: seed 1 of gt-building's URG-04LX
 // flights restarted 11 times in the building's east half, its west rooms never entered
 // (EXPERIMENTS.md).
