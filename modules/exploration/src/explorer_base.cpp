@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
+
+#include "kestrel/core/mode_names.hpp"
 
 namespace kestrel::exploration {
 namespace {
@@ -29,10 +30,7 @@ const char* to_string(ExplorerKind k) {
 }
 
 Result<ExplorerKind> parse_explorer_kind(const char* name) {
-  if (name == nullptr) return Status::kInvalidArgument;
-  for (ExplorerKind k : kExplorerKinds)
-    if (std::strcmp(name, to_string(k)) == 0) return k;
-  return Status::kInvalidArgument;
+  return parse_by_name(name, kExplorerKinds);
 }
 
 Status ExplorerBase::configure(const Params& params, const BeamGeometry& geometry) {

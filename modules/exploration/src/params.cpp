@@ -1,8 +1,8 @@
 #include "kestrel/exploration/params.hpp"
 
 #include <cmath>
-#include <cstring>
 
+#include "kestrel/core/mode_names.hpp"
 #include "kestrel/exploration/beam_geometry.hpp"
 
 namespace kestrel::exploration {
@@ -12,18 +12,6 @@ bool positive(float v) {
 }
 bool non_negative(float v) {
   return std::isfinite(v) && v >= 0.0f;
-}
-// Against the one list of modes, which parse_steer_unflown reads too: a new mode is added there
-// and nowhere else.
-bool known(SteerUnflown mode) {
-  for (SteerUnflown s : kSteerUnflownModes)
-    if (s == mode) return true;
-  return false;
-}
-bool known(RetraceMode mode) {
-  for (RetraceMode m : kRetraceModes)
-    if (m == mode) return true;
-  return false;
 }
 }  // namespace
 
@@ -42,10 +30,7 @@ const char* to_string(SteerUnflown s) {
 }
 
 Result<SteerUnflown> parse_steer_unflown(const char* name) {
-  if (name == nullptr) return Status::kInvalidArgument;
-  for (SteerUnflown s : kSteerUnflownModes)
-    if (std::strcmp(name, to_string(s)) == 0) return s;
-  return Status::kInvalidArgument;
+  return parse_by_name(name, kSteerUnflownModes);
 }
 
 const char* to_string(RetraceMode m) {
@@ -61,10 +46,7 @@ const char* to_string(RetraceMode m) {
 }
 
 Result<RetraceMode> parse_retrace_mode(const char* name) {
-  if (name == nullptr) return Status::kInvalidArgument;
-  for (RetraceMode m : kRetraceModes)
-    if (std::strcmp(name, to_string(m)) == 0) return m;
-  return Status::kInvalidArgument;
+  return parse_by_name(name, kRetraceModes);
 }
 
 Status Params::validate() const {
@@ -76,7 +58,7 @@ Status Params::validate() const {
                       positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
                       srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
                       non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1 &&
-                      known(srt.steer) && known(srt.retrace);
+                      listed(srt.steer, kSteerUnflownModes) && listed(srt.retrace, kRetraceModes);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
     const KeepOut& k = srt.keep_out[i];
