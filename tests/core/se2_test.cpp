@@ -79,6 +79,9 @@ TEST(Point2, DistanceIsSymmetricAndPlanar) {
   EXPECT_NEAR(distance(a, b), 5, kTol);
   EXPECT_NEAR(distance(b, a), 5, kTol);
   EXPECT_EQ(distance(a, a), 0);
+  EXPECT_NEAR(squared_distance(a, b), 25, kTol);
+  EXPECT_NEAR(squared_distance(b, a), 25, kTol);
+  EXPECT_EQ(squared_distance(a, a), 0);
 }
 
 TEST(Point2, DistanceToSegmentIsPerpendicularInsideAndToTheNearerEndOutside) {

@@ -8,6 +8,7 @@
 
 #include "kestrel/exploration/flown_history.hpp"
 #include "kestrel/exploration/srt_star_planner.hpp"
+#include "kestrel/exploration/work_units.hpp"
 #include "synthetic_world.hpp"
 
 namespace kestrel::exploration {
@@ -89,6 +90,7 @@ struct RetraceFlight {
   std::unique_ptr<SrtStarPlanner> planner = std::make_unique<SrtStarPlanner>();
   std::vector<Point2> waypoints;  // issued while retracing
   std::vector<Point2> arrivals;   // where the vehicle was when each counted as reached
+  std::vector<uint32_t> arrival_work;  // Arrival::kOnTheWaypoint: the work of the arriving call
   Pose2 end{};
 };
 
@@ -161,6 +163,7 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, bool sliced = false,
     r.arrivals.push_back({w.x, w.y});
     t += Duration::from_s(1);
     EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
+    r.arrival_work.push_back(r.planner->last_work());
     for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
       EXPECT_EQ(r.planner->update(r.end, enclosed, t, fresh), Status::kOk);
   }
@@ -246,6 +249,24 @@ TEST(SrtStarPlannerRetrace, SlicedTheWayBackIsTheOneShotOne) {
     EXPECT_FLOAT_EQ(sliced.waypoints[i].y, whole.waypoints[i].y) << i;
   }
   EXPECT_FLOAT_EQ(sliced.end.x, whole.end.x);
+}
+
+// Each arrival on the way back finds the leg after the next: the earliest visit of its end, a
+// search from the trail's best point up to it, is work the cycle's budget must see (on the
+// Verdex, a trail point's test is software floating point).
+TEST(SrtStarPlannerRetrace, EveryArrivalOnTheWayBackCountsItsSearchWithinTheBudget) {
+  const RetraceFlight r = fly(RetraceMode::kAlways, 300, true);
+  ASSERT_GE(r.arrival_work.size(), 10u);
+  // The first legs start some 200 trail points after the best one, near the start.
+  EXPECT_GT(r.arrival_work.front(), 100 * work::kTrailPoint);
+  // The last two arrivals are at the leg before the last, which has no leg after it, and at the
+  // last, where the fresh tree's step counts its own.
+  for (std::size_t k = 0; k + 2 < r.arrival_work.size(); ++k) {
+    EXPECT_GE(r.arrival_work[k], 1 + work::kTrailPoint) << k;  // at least one point tested
+    EXPECT_LE(r.arrival_work[k], SrtParams{}.arrival_work_per_cycle) << k;
+  }
+  // Nearer the best point there is less to search.
+  EXPECT_LT(r.arrival_work[r.arrival_work.size() - 3], r.arrival_work.front());
 }
 
 // Held on a leg of the way back until the time limit: exploration restarts where the vehicle

@@ -27,8 +27,9 @@ void FlownHistory::keep_first(std::size_t n) {
 }
 
 std::size_t FlownHistory::earliest_near(std::size_t first, std::size_t last, Point2 p, float r) const {
+  const float r2 = r * r;
   for (std::size_t i = first; i < last && i < points_.size(); ++i)
-    if (distance(points_[i], p) < r) return i;
+    if (squared_distance(points_[i], p) < r2) return i;
   return last;
 }
 

@@ -207,8 +207,10 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
         trail_.keep_first(trail_reached_ + 1);
         restart_tree(RestartReason::kTimeout);
         if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
-      } else if (Status st = advance_retrace(pose, scan, now); st != Status::kOk) {
-        return st;
+      } else {
+        Status st = Status::kOk;
+        last_work_ += advance_retrace(pose, scan, now, st);
+        if (st != Status::kOk) return st;
       }
     } else if (mode_ == PlannerMode::kRetrace) {
       // On the way back along the trail.
@@ -591,31 +593,40 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   target_node_ = kNoNode;
   // A run-out on the root comes after backtracking to it: the newest points are the way back
   // from the branch just explored, which the earliest visit of this place skips.
-  const std::size_t newest = trail_.size() - 1;
-  trail_reached_ = trail_.earliest_near(trail_best_, newest, trail_.point(newest), kRetraceLoopM);
-  trail_next_ = next_leg(trail_reached_, {job_pose_.x, job_pose_.y});
-  set_retrace_waypoint({job_pose_.x, job_pose_.y}, now);
+  uint32_t used = 1;
+  trail_reached_ = earliest_visit(trail_.size() - 1, used);
+  trail_next_ = next_leg(trail_reached_, {job_pose_.x, job_pose_.y}, used);
+  used += set_retrace_waypoint({job_pose_.x, job_pose_.y}, now);
   step_ = Step::kNone;
-  return 1;
+  return used;
 }
 
-std::size_t SrtStarPlanner::next_leg(std::size_t from, Point2 at) const {
+std::size_t SrtStarPlanner::earliest_visit(std::size_t last, uint32_t& work) const {
+  const std::size_t found = trail_.earliest_near(trail_best_, last, trail_.point(last), kRetraceLoopM);
+  work += 1 + static_cast<uint32_t>(found - trail_best_) * work::kTrailPoint;
+  return found;
+}
+
+std::size_t SrtStarPlanner::next_leg(std::size_t from, Point2 at, uint32_t& work) const {
   std::size_t end = from;
   while (end > trail_best_) {
     const std::size_t candidate = end - 1;
     // The first leg skips no point but `from`, which the vehicle is at.
     bool along = true;
     if (candidate + 1 < from)
-      for (std::size_t k = candidate + 1; k <= from && along; ++k)
+      for (std::size_t k = candidate + 1; k <= from && along; ++k) {
         along = distance_to_segment(at, trail_.point(candidate), trail_.point(k)) <= kRetraceDeviationM;
+        work += work::kPathBeam;
+      }
     if (!along) break;
     end = candidate;
-    if (distance(at, trail_.point(end)) >= kRetraceStepM) break;
+    work += work::kTrailPoint;
+    if (squared_distance(at, trail_.point(end)) >= kRetraceStepM * kRetraceStepM) break;
   }
   return end;
 }
 
-Status SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now) {
+uint32_t SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now, Status& status) {
   if (trail_next_ <= trail_best_) {
     // There: what was recorded after it is not the way the vehicle is now, and a fresh tree
     // grows here, steered towards what drew the vehicle back (a pause from a steered waypoint
@@ -623,17 +634,17 @@ Status SrtStarPlanner::advance_retrace(const Pose2& pose, const LaserScan& scan,
     trail_.keep_first(trail_best_ + 1);
     steer_paused_ = false;
     restart_tree(RestartReason::kRetraced);
-    return start_grow(pose, scan);
+    status = start_grow(pose, scan);
+    return 0;  // start_grow counts its own
   }
   // A loop back to here is not flown again: on from the earliest visit of this place.
-  const Point2 at = trail_.point(trail_next_);
-  trail_reached_ = trail_.earliest_near(trail_best_, trail_next_, at, kRetraceLoopM);
-  trail_next_ = next_leg(trail_reached_, at);
-  set_retrace_waypoint(at, now);
-  return Status::kOk;
+  trail_reached_ = retrace_after_reached_;
+  trail_next_ = retrace_after_next_;
+  status = Status::kOk;
+  return set_retrace_waypoint({pose.x, pose.y}, now);
 }
 
-void SrtStarPlanner::set_retrace_waypoint(Point2 leg_start, TimeUs now) {
+uint32_t SrtStarPlanner::set_retrace_waypoint(Point2 leg_start, TimeUs now) {
   const Point2 end = trail_.point(trail_next_);
   set_waypoint(end, now);
   // The last leg's end is arrived at within d (0 here). Before that, a vehicle that turns for
@@ -642,21 +653,24 @@ void SrtStarPlanner::set_retrace_waypoint(Point2 leg_start, TimeUs now) {
   // turn cut corners past the 0.15 m the legs keep to, into a door's jamb: SRT alone touched
   // the kinematic building's partition end on 6 of 10 flights. So r keeps the cut within
   // kRetraceDeviationM: kRetraceDeviationM / sin(turn), between kRetraceDeviationM and
-  // kRetraceArrivalM. The next leg is the one advance_retrace will take: the trail does not
-  // change meanwhile.
+  // kRetraceArrivalM. The line it came by starts where the vehicle turned onto this leg, not
+  // at the trail point it turned for: up to kRetraceArrivalM before it.
   retrace_arrival_m_ = 0.0f;
-  if (trail_next_ <= trail_best_) return;
+  if (trail_next_ <= trail_best_) return 1;
   retrace_arrival_m_ = kRetraceDeviationM;
-  const std::size_t reached = trail_.earliest_near(trail_best_, trail_next_, end, kRetraceLoopM);
-  const Point2 next = trail_.point(next_leg(reached, end));
+  uint32_t used = 1;
+  retrace_after_reached_ = earliest_visit(trail_next_, used);
+  retrace_after_next_ = next_leg(retrace_after_reached_, end, used);
+  const Point2 next = trail_.point(retrace_after_next_);
   const float ax = end.x - leg_start.x, ay = end.y - leg_start.y, bx = next.x - end.x, by = next.y - end.y;
   const float la = std::hypot(ax, ay), lb = std::hypot(bx, by);
-  if (!(la > 0.0f && lb > 0.0f)) return;
+  if (!(la > 0.0f && lb > 0.0f)) return used;
   const float cos_turn = (ax * bx + ay * by) / (la * lb);
   const float sin_turn = std::fabs(ax * by - ay * bx) / (la * lb);
-  if (cos_turn <= 0.0f) return;
+  if (cos_turn <= 0.0f) return used;
   const float early = sin_turn > 0.0f ? kRetraceDeviationM / sin_turn : kRetraceArrivalM;
   retrace_arrival_m_ = std::clamp(early, kRetraceDeviationM, kRetraceArrivalM);
+  return used;
 }
 
 uint32_t SrtStarPlanner::run_out_on_root(TimeUs now) {

@@ -1,7 +1,7 @@
 #pragma once
 // Rigid-body poses in the plane, SE(2): composition, inverse, relative pose and point
-// transforms. The heading is kept wrapped to [-pi, pi). Also the two point distances the
-// planners and trails measure paths with.
+// transforms. The heading is kept wrapped to [-pi, pi). Also the point distances the planners
+// and trails measure paths with.
 #include <algorithm>
 #include <cmath>
 
@@ -18,6 +18,14 @@ struct Point2T {
 template <class T>
 T distance(const Point2T<T>& a, const Point2T<T>& b) {
   return std::hypot(a.x - b.x, a.y - b.y);
+}
+
+// For comparing against a squared radius where no square root is wanted: the Verdex computes
+// in software floating point, where hypot costs several times the rest of a point's test.
+template <class T>
+T squared_distance(const Point2T<T>& a, const Point2T<T>& b) {
+  const T dx = a.x - b.x, dy = a.y - b.y;
+  return dx * dx + dy * dy;
 }
 
 // Distance of p from the segment a-b: how far a straight leg a-b passes from a point of the

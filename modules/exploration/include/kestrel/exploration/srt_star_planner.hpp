@@ -47,15 +47,17 @@
 // (kRetrace: legs of up to kRetraceStepM that pass within kRetraceDeviationM of every trail
 // point they skip, each end but the last arrived at within the distance, from kRetraceDeviationM
 // to kRetraceArrivalM, that keeps the turn onto the next leg within kRetraceDeviationM of it,
-// the last within d; a loop is skipped where an earlier point lies within kRetraceLoopM of the
-// one reached, the vehicle's own place when the retrace begins included) and a fresh tree
-// (steered, as any after a restart, even after a steering pause) grows where it ends; the trail
-// is cut back to there (or, when the time limit ends the retrace, to the point last reached).
-// Else the run-out goes on as above; the trail is looked along at most once until a forward
-// waypoint is reached. The trail is not recorded while retracing; the time limit during a retrace restarts exploration where the vehicle is, as for
-// any waypoint. Paper 002 has no memory across its restarts: seed 1 of gt-building's URG-04LX
-// flights restarted 11 times in the building's east half, its west rooms never entered
-// (EXPERIMENTS.md).
+// the turn measured from where the vehicle started the leg; the last end within d; a loop is
+// skipped where an earlier point lies within kRetraceLoopM of the one reached, the vehicle's
+// own place when the retrace begins included) and a fresh tree (steered, as any after a
+// restart, even after a steering pause) grows where it ends; the trail is cut back to there (or,
+// when the time limit ends the retrace, to the point last reached). Each leg's successor is
+// found when the leg begins, its work counted in that update(). Else the run-out goes on as
+// above; the trail is looked along at most once until a forward waypoint is reached. The trail
+// is not recorded while retracing; the time limit during a retrace restarts exploration where
+// the vehicle is, as for any waypoint. Paper 002 has no memory across its restarts: seed 1 of
+// gt-building's URG-04LX flights restarted 11 times in the building's east half, its west rooms
+// never entered (EXPERIMENTS.md).
 //
 // Defined behaviours: a frontier is given max_attempts_per_frontier waypoints and then dropped,
 // and a frontier with no valid waypoint is dropped at once (so a frontier that cannot be seen
@@ -212,15 +214,20 @@ class SrtStarPlanner {
   uint32_t run_out_on_root(TimeUs now);
   // srt.retrace: counts the next trail point; when the trail is done, retraces or runs out.
   uint32_t scan_trail(TimeUs now);
+  // The earliest visit, from trail_best_ on, of where trail point `last` is (last if none is
+  // within kRetraceLoopM); adds its work units to `work`.
+  std::size_t earliest_visit(std::size_t last, uint32_t& work) const;
   // The end of the next leg back from trail point `from`, for a vehicle at `at` (on or near
   // it): the point before, or further back up to kRetraceStepM while every point the leg skips
-  // lies within kRetraceDeviationM of it (no corner cut).
-  std::size_t next_leg(std::size_t from, Point2 at) const;
-  // Flying back along the trail: the next trail point kRetraceStepM on, or the fresh tree.
-  Status advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now);
-  // The waypoint is trail point trail_next_, the leg to it starting at `leg_start`; sets how
-  // early it counts as arrived at (retrace_arrival_m_).
-  void set_retrace_waypoint(Point2 leg_start, TimeUs now);
+  // lies within kRetraceDeviationM of it (no corner cut). Adds its work units to `work`.
+  std::size_t next_leg(std::size_t from, Point2 at, uint32_t& work) const;
+  // Flying back along the trail, the vehicle at `pose`: the leg after, or the fresh tree.
+  // Returns the work units spent.
+  uint32_t advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now, Status& status);
+  // The waypoint is trail point trail_next_, the leg to it starting where the vehicle is,
+  // `leg_start`. Finds the leg after it (retrace_after_) and from the turn onto it how early
+  // the waypoint counts as arrived at (retrace_arrival_m_). Returns the work units spent.
+  uint32_t set_retrace_waypoint(Point2 leg_start, TimeUs now);
   // The straight path from the arrival pose to `p` against the returns of the arrival scan.
   uint32_t start_path(Point2 p, bool backtrack);
   uint32_t check_path(uint32_t budget, TimeUs now);
@@ -275,6 +282,9 @@ class SrtStarPlanner {
   std::size_t trail_best_ = 0;  // the trail point with the most unflown cells in reach
   std::size_t trail_reached_ = 0;  // retracing: the earliest visit of the point last reached
   float retrace_arrival_m_ = 0;    // retracing: the waypoint counts as reached this near (0: d)
+  // Retracing: the leg after the current one, found when the current one began (the trail
+  // does not change meanwhile): the earliest visit of the current end, and the next end.
+  std::size_t retrace_after_reached_ = 0, retrace_after_next_ = 0;
   uint32_t unflown_best_ = 0, unflown_here_ = 0;
   uint32_t retraces_ = 0;
 
