@@ -142,6 +142,7 @@ void SrtStarPlanner::reset() {
   trail_.clear();
   trail_scanned_ = false;
   trail_next_ = trail_best_ = trail_reached_ = 0;
+  retrace_after_reached_ = retrace_after_next_ = 0;
   unflown_best_ = unflown_here_ = 0;
   retraces_ = 0;
   step_ = Step::kNone;
@@ -209,7 +210,8 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
         if (Status st = start_grow(pose, scan); st != Status::kOk) return st;
       } else {
         Status st = Status::kOk;
-        last_work_ += advance_retrace(pose, scan, now, st);
+        const uint32_t searched = advance_retrace(pose, scan, now, st);  // start_grow counts its own
+        last_work_ += searched;
         if (st != Status::kOk) return st;
       }
     } else if (mode_ == PlannerMode::kRetrace) {
@@ -342,6 +344,10 @@ void SrtStarPlanner::work_on_arrival(TimeUs now) {
         break;
       case Step::kTrailScan:
         used += scan_trail(now);
+        break;
+      case Step::kRetraceBegin:
+        used += set_retrace_waypoint({job_pose_.x, job_pose_.y}, now);
+        step_ = Step::kNone;
         break;
       case Step::kNone:
         break;
@@ -593,17 +599,19 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   target_node_ = kNoNode;
   // A run-out on the root comes after backtracking to it: the newest points are the way back
   // from the branch just explored, which the earliest visit of this place skips.
+  // Each search along the trail is up to FlownHistory::kCapacity points, so finding the leg
+  // after this one is an item of its own (kRetraceBegin), as it is on each arrival.
   uint32_t used = 1;
   trail_reached_ = earliest_visit(trail_.size() - 1, used);
   trail_next_ = next_leg(trail_reached_, {job_pose_.x, job_pose_.y}, used);
-  used += set_retrace_waypoint({job_pose_.x, job_pose_.y}, now);
-  step_ = Step::kNone;
+  step_ = Step::kRetraceBegin;
   return used;
 }
 
 std::size_t SrtStarPlanner::earliest_visit(std::size_t last, uint32_t& work) const {
   const std::size_t found = trail_.earliest_near(trail_best_, last, trail_.point(last), kRetraceLoopM);
-  work += 1 + static_cast<uint32_t>(found - trail_best_) * work::kTrailPoint;
+  const std::size_t tested = found - trail_best_ + (found < last ? 1 : 0);
+  work += 1 + static_cast<uint32_t>(tested) * work::kTrailPoint;
   return found;
 }
 

@@ -73,10 +73,11 @@
 // The arrival step (sectors and their erosion, the new node and its frontiers, the choice of
 // the next waypoint) costs several million instructions on the Verdex, more than a guidance
 // cycle's share, so it runs in slices: at most srt.arrival_work_per_cycle work units
-// (work_units.hpp) per update(), on a copy of the arrival's pose and scan. Meanwhile busy() is
-// true, waypoint() stays where it was (the waypoint just reached; the vehicle's position when
-// exploration starts or restarts), the poses and scans given are not used and the time limit
-// does not run. The result, once done, is the one a single call would give (tested); the new
+// (work_units.hpp) per update(), and the item under way (the largest: one return's erosion over
+// every ray, 2.8 k units, or one search along the retrace's trail, up to 4.3 k), on a copy of
+// the arrival's pose and scan. Meanwhile busy() is true, waypoint() stays where it was (the
+// waypoint just reached; the vehicle's position when exploration starts or restarts), the poses
+// and scans given are not used and the time limit does not run. The result, once done, is the one a single call would give (tested); the new
 // waypoint's time is that of the call that finishes it.
 #include <array>
 #include <bitset>
@@ -189,7 +190,8 @@ class SrtStarPlanner {
   const VisitedGrid& visited() const { return visited_; }  // where the vehicle has flown
 
  private:
-  enum class Step : uint8_t { kNone, kSectors, kTree, kPick, kDraw, kPath, kTrailScan };
+  // kRetraceBegin: the first leg back is found, the leg after it (for the turn) is the item.
+  enum class Step : uint8_t { kNone, kSectors, kTree, kPick, kDraw, kPath, kTrailScan, kRetraceBegin };
   // Starts the arrival step's slices on a copy of (pose, scan).
   Status start_grow(const Pose2& pose, const LaserScan& scan);
   void start_choose(const Pose2& pose, const LaserScan& scan);
@@ -225,7 +227,8 @@ class SrtStarPlanner {
   // Returns the work units spent.
   uint32_t advance_retrace(const Pose2& pose, const LaserScan& scan, TimeUs now, Status& status);
   // The waypoint is trail point trail_next_, the leg to it starting where the vehicle is,
-  // `leg_start`. Finds the leg after it (retrace_after_) and from the turn onto it how early
+  // `leg_start`. Finds the leg after it (retrace_after_reached_, retrace_after_next_) and from
+  // the turn onto it how early
   // the waypoint counts as arrived at (retrace_arrival_m_). Returns the work units spent.
   uint32_t set_retrace_waypoint(Point2 leg_start, TimeUs now);
   // The straight path from the arrival pose to `p` against the returns of the arrival scan.
