@@ -19,6 +19,7 @@ using test::LaserModel;
 using test::uniform_scan;
 
 const LaserModel kUrg = LaserModel::urg04lx();
+constexpr int kSliceGuard = 1000000;  // calls an arrival step may take: a hang's guard only
 
 TEST(FlownHistory, KeepsPointsASpacingApartInTheOrderFlown) {
   FlownHistory h;
@@ -62,17 +63,26 @@ TEST(FlownHistory, FindsTheEarliestVisitOfAPlaceAndCutsBackToAPoint) {
 }
 
 // The flight the vehicle is given, 0.25 m a pose: east along y = 0 to x = 22, a narrow loop
-// north (to y = 8, back down at x = 20 to y = 0.4, every cell of it flown), east again to
-// x = 26, then a lawn-mower over x 26..38, y 0.4..10 with lines 2 m apart, so that where it
-// ends everything in reach is flown while the rooms beside the start (y 2..10, x under 19) are
-// not.
-std::vector<Point2> flight_out() {
-  std::vector<Point2> corners = {{0, 0}, {22, 0}, {22, 8}, {20, 8}, {20, 0.4f}, {26, 0.4f}};
-  for (int line = 0; line <= 6; ++line) {
-    const float x = 26.0f + 2.0f * static_cast<float>(line);
+// north (to y = 8, back down at x = 20 to y = 0.4, every cell of it flown), then
+// Outward::kLawnMower: east again to x = 26 and a lawn-mower over x 26..38, y 0.4..10 with
+// lines 2 m apart, so that where it ends everything in reach is flown while the rooms beside the
+// start (y 2..10, x under 19) are not.
+// Outward::kLong: east to x = 23.5 and a lawn-mower over x 23.5..30.5, y -27..27 with lines 1 m
+// apart (more than kRetraceLoopM: no place is passed twice), some 860 trail points, the
+// history nearly full, inside the visited grid; the rooms beside the start reach y 27 and -27.
+enum class Outward { kLawnMower, kLong };
+
+std::vector<Point2> flight_out(Outward shape = Outward::kLawnMower) {
+  const bool wide = shape == Outward::kLong;
+  const float x0 = wide ? 23.5f : 26.0f, pitch = wide ? 1.0f : 2.0f;
+  const float low = wide ? -27.0f : 0.4f, high = wide ? 27.0f : 10.0f;
+  const int lines = wide ? 8 : 7;
+  std::vector<Point2> corners = {{0, 0}, {22, 0}, {22, 8}, {20, 8}, {20, 0.4f}, {x0, 0.4f}};
+  for (int line = 0; line < lines; ++line) {
+    const float x = x0 + pitch * static_cast<float>(line);
     const bool up = line % 2 == 0;
-    if (line > 0) corners.push_back({x, up ? 0.4f : 10.0f});
-    corners.push_back({x, up ? 10.0f : 0.4f});
+    if (line > 0) corners.push_back({x, up ? low : high});
+    corners.push_back({x, up ? high : low});
   }
   std::vector<Point2> poses;
   for (std::size_t c = 0; c + 1 < corners.size(); ++c) {
@@ -93,6 +103,7 @@ struct RetraceFlight {
   std::vector<Point2> arrivals;   // where the vehicle was when each counted as reached
   std::vector<uint32_t> arrival_work;  // Arrival::kOnTheWaypoint: the work of the arriving call
   uint32_t most_work = 0;              // of any call
+  std::size_t trail_at_retrace = 0;    // the path flown's points when the way back began
   Pose2 end{};
 };
 
@@ -104,11 +115,15 @@ enum class Arrival { kOnTheWaypoint, kAsEarlyAsAllowed };
 // the vehicle is put on each waypoint in turn.
 // Arrival::kAsEarlyAsAllowed: on the way back the vehicle flies straight at each waypoint from
 // where it was, and turns for the next one where the planner first gives it.
-RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, bool sliced = false, Arrival arrival = Arrival::kOnTheWaypoint,
-                  bool guarded = false) {
+// work_per_cycle: the arrival step's budget, 0 for one shot; 1 runs one item a call.
+constexpr uint32_t kOneShot = 0;
+constexpr uint32_t kVerdexSlices = SrtParams{}.arrival_work_per_cycle;
+
+RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, uint32_t work_per_cycle = kOneShot,
+                  Arrival arrival = Arrival::kOnTheWaypoint, bool guarded = false, Outward shape = Outward::kLawnMower) {
   RetraceFlight r;
   SrtParams srt;
-  if (!sliced) srt.arrival_work_per_cycle = 0;
+  srt.arrival_work_per_cycle = work_per_cycle;
   srt.retrace = mode;
   GuidanceParams g;
   g.waypoint_time_limit_s = 1000.0f;
@@ -126,26 +141,27 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, bool sliced = false,
   const float west = static_cast<float>(M_PI);
   bool fresh = false;
   EXPECT_EQ(update({0, 0, west}, west_open, TimeUs{}, fresh), Status::kOk);
-  for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
+  for (int slice = 0; slice < kSliceGuard && r.planner->busy(); ++slice)
     EXPECT_EQ(update({0, 0, west}, west_open, TimeUs{}, fresh), Status::kOk);
   EXPECT_EQ(r.planner->mode(), PlannerMode::kForward);
   EXPECT_LT(r.planner->waypoint().x, -0.3f);
   TimeUs t{};
-  for (const Point2& p : flight_out()) {
+  for (const Point2& p : flight_out(shape)) {
     t += Duration::from_ms(100);
     EXPECT_EQ(update({p.x, p.y, 0}, enclosed, t, fresh), Status::kOk);
     EXPECT_FALSE(fresh);
   }
   EXPECT_EQ(r.planner->restarts(), 0u);
-  const Point2 last = flight_out().back();
+  const Point2 last = flight_out(shape).back();
   r.end = {last.x, last.y, 0};
   t = TimeUs::from_s(1001);
   EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
   // Sliced, the arrival step (the trail's count among it) goes on over the next calls, the
   // vehicle waiting where it is.
-  for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
+  for (int slice = 0; slice < kSliceGuard && r.planner->busy(); ++slice)
     EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
   EXPECT_EQ(r.planner->restarts(RestartReason::kTimeout), 1u);
+  r.trail_at_retrace = r.planner->trail().size();
   for (int k = 0; k < retrace_legs && r.planner->mode() == PlannerMode::kRetrace; ++k) {
     r.waypoints.push_back(r.planner->waypoint());
     const Point2 w = r.planner->waypoint();
@@ -158,7 +174,7 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, bool sliced = false,
         r.end = {from.x + f * (w.x - from.x), from.y + f * (w.y - from.y), 0};
         t += Duration::from_ms(100);
         EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
-        for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
+        for (int slice = 0; slice < kSliceGuard && r.planner->busy(); ++slice)
           EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
         if (r.planner->mode() != PlannerMode::kRetrace || r.planner->waypoint().x != w.x ||
             r.planner->waypoint().y != w.y)
@@ -172,7 +188,7 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, bool sliced = false,
     t += Duration::from_s(1);
     EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
     r.arrival_work.push_back(r.planner->last_work());
-    for (int slice = 0; slice < 1000 && r.planner->busy(); ++slice)
+    for (int slice = 0; slice < kSliceGuard && r.planner->busy(); ++slice)
       EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
   }
   return r;
@@ -220,7 +236,7 @@ TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsS
 // kRetraceDeviationM: the early turn past a door's jamb was what the review's corner bound
 // missed (SRT alone, kinematic flights, touching the partition's end).
 TEST(SrtStarPlannerRetrace, TurningEarlyForTheNextLegCutsNoCornerByMoreThanTheDeviation) {
-  const RetraceFlight r = fly(RetraceMode::kAlways, 300, false, Arrival::kAsEarlyAsAllowed);
+  const RetraceFlight r = fly(RetraceMode::kAlways, 300, kOneShot, Arrival::kAsEarlyAsAllowed);
   EXPECT_EQ(r.planner->retraces(), 1u);
   ASSERT_GE(r.waypoints.size(), 10u);
   const std::vector<Point2> out = flight_out();
@@ -249,7 +265,7 @@ TEST(SrtStarPlannerRetrace, TurningEarlyForTheNextLegCutsNoCornerByMoreThanTheDe
 // The trail's count and the arrival steps in slices, as on the Verdex: the same way back.
 TEST(SrtStarPlannerRetrace, SlicedTheWayBackIsTheOneShotOne) {
   const RetraceFlight whole = fly(RetraceMode::kAlways);
-  const RetraceFlight sliced = fly(RetraceMode::kAlways, 300, true);
+  const RetraceFlight sliced = fly(RetraceMode::kAlways, 300, kVerdexSlices);
   ASSERT_EQ(sliced.planner->retraces(), 1u);
   ASSERT_EQ(sliced.waypoints.size(), whole.waypoints.size());
   for (std::size_t i = 0; i < whole.waypoints.size(); ++i) {
@@ -263,7 +279,7 @@ TEST(SrtStarPlannerRetrace, SlicedTheWayBackIsTheOneShotOne) {
 // search from the trail's best point up to it, is work the cycle's budget must see (on the
 // Verdex, a trail point's test is software floating point).
 TEST(SrtStarPlannerRetrace, EveryArrivalOnTheWayBackCountsItsSearchWithinTheBudget) {
-  const RetraceFlight r = fly(RetraceMode::kAlways, 300, true);
+  const RetraceFlight r = fly(RetraceMode::kAlways, 300, kVerdexSlices);
   ASSERT_GE(r.arrival_work.size(), 10u);
   // The first legs start some 200 trail points after the best one, near the start.
   EXPECT_GT(r.arrival_work.front(), 100 * work::kTrailPoint);
@@ -278,6 +294,22 @@ TEST(SrtStarPlannerRetrace, EveryArrivalOnTheWayBackCountsItsSearchWithinTheBudg
   EXPECT_LE(r.most_work, SrtParams{}.arrival_work_per_cycle + 1 + (FlownHistory::kCapacity + 50) * work::kTrailPoint);
   // Nearer the best point there is less to search.
   EXPECT_LT(r.arrival_work[r.arrival_work.size() - 3], r.arrival_work.front());
+}
+
+// One item a call (a budget of 1 unit), so a call's work is the largest item it ran: with the
+// history nearly full, the retrace's start is two searches along it, each an item of its own
+// (kTrailScan's last, kRetraceBegin). Done as one, that call would be twice the largest.
+TEST(SrtStarPlannerRetrace, WithANearlyFullHistoryNoItemSearchesItTwice) {
+  const RetraceFlight r = fly(RetraceMode::kAlways, 400, 1, Arrival::kOnTheWaypoint, false, Outward::kLong);
+  ASSERT_EQ(r.planner->retraces(), 1u);
+  ASSERT_GE(r.trail_at_retrace, 800u);
+  ASSERT_LT(r.trail_at_retrace, FlownHistory::kCapacity);  // not thinned
+  // The rooms beside the start drew it back: the first search ran most of the history.
+  EXPECT_LT(r.end.x, 19.0f);
+  EXPECT_GT(r.most_work, r.trail_at_retrace / 2 * work::kTrailPoint);
+  // One search of every point, next_leg's few tests of the points a leg skips, and the item's 1.
+  constexpr uint32_t kLegTests = 4 * work::kTrailPoint + 6 * work::kPathBeam;  // 2 m of 0.5 m points
+  EXPECT_LE(r.most_work, 2 + r.trail_at_retrace * work::kTrailPoint + kLegTests) << r.most_work;
 }
 
 // Held on a leg of the way back until the time limit: exploration restarts where the vehicle
@@ -317,7 +349,7 @@ TEST(SrtStarPlannerRetrace, GuardedRetracesOnlyAGuardedPlanner) {
   EXPECT_FALSE(unguarded.planner->retraces_enabled());
   EXPECT_EQ(unguarded.planner->retraces(), 0u);
   EXPECT_EQ(unguarded.planner->trail().size(), 0u);  // nor is the path kept
-  const RetraceFlight guarded = fly(RetraceMode::kGuarded, 300, false, Arrival::kOnTheWaypoint, true);
+  const RetraceFlight guarded = fly(RetraceMode::kGuarded, 300, kOneShot, Arrival::kOnTheWaypoint, true);
   EXPECT_TRUE(guarded.planner->retraces_enabled());
   EXPECT_EQ(guarded.planner->retraces(), 1u);
   EXPECT_LT(guarded.end.x, 19.0f);
