@@ -13,6 +13,7 @@
 #include "kestrel/core/messages.hpp"
 #include "kestrel/exploration/approach_limiter.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
+#include "kestrel/exploration/flown_history.hpp"
 #include "kestrel/exploration/frontier_explorer.hpp"
 #include "kestrel/exploration/srt_star_planner.hpp"
 #include "kestrel/exploration/unflown_bearings.hpp"
@@ -207,6 +208,21 @@ void BM_UnflownCount(benchmark::State& s) {
     benchmark::DoNotOptimize(bearings->total());
   }
 }
+// A retrace's search along the path flown (work::kTrailPoint): a full history, a lawn-mower of
+// FlownHistory::kCapacity points, searched from its first point to its last for a place no
+// point is near, so that every point is tested.
+void BM_TrailSearch(benchmark::State& s) {
+  auto history = std::make_unique<FlownHistory>();
+  const float step = FlownHistory::kSpacingM;
+  for (std::size_t i = 0; i < FlownHistory::kCapacity; ++i) {
+    const std::size_t line = i / 64, along = i % 64;  // 32 m lines, 1 m apart
+    const float y = step * static_cast<float>(line % 2 == 0 ? along : 63 - along);
+    history->record({static_cast<float>(line), y});
+  }
+  const Point2 elsewhere{-10.0f, -10.0f};
+  for (auto _ : s) benchmark::DoNotOptimize(history->earliest_near(0, history->size() - 1, elsewhere, 0.4f));
+  s.counters["points"] = static_cast<double>(history->size());
+}
 // The grid frontier explorer (paper 003) in a 15 x 10 m hall split by a wall with a 1 m door,
 // after a walk through its west half: one cycle of both levels, the scan drawn and a whole
 // plan made (obstacle distance, search, frontiers, path) every iteration (replan_period_s
@@ -285,5 +301,6 @@ BENCHMARK(BM_SrtArrivalCyclesUrg)->Name("exploration/srt_arrival_cycles/urg04lx_
 BENCHMARK(BM_SrtArrivalCyclesCorridorUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682_corridor")->DenseRange(1, 16);
 BENCHMARK(BM_SrtArrivalCyclesUtm)->Name("exploration/srt_arrival_cycles/utm30lx_1081")->DenseRange(1, 8);
 BENCHMARK(BM_UnflownCount)->Name("exploration/unflown_count");
+BENCHMARK(BM_TrailSearch)->Name("exploration/trail_search/1024");
 
 }  // namespace
