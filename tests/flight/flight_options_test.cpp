@@ -131,6 +131,13 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kOff);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "1"}}}, retrace),
             "srt_retrace: expected off, guarded or on, got '1'");
+  // The flight home's shortcut where the scan shows the way clear.
+  FlightOptions home;
+  EXPECT_TRUE(home.stack.mission.return_shortcut);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"return_shortcut", "off"}}}, home), "");
+  EXPECT_FALSE(home.stack.mission.return_shortcut);
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"return_shortcut", "no"}}}, home),
+            "return_shortcut: expected on or off, got 'no'");
   // Frontiers kept beside walls.
   FlightOptions rescue;
   EXPECT_FALSE(rescue.stack.explorer.srt.rescue_frontiers);

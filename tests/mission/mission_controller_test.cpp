@@ -8,6 +8,7 @@
 
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/core/angle.hpp"
+#include "synthetic_world.hpp"
 
 namespace kestrel::mission {
 namespace {
@@ -281,6 +282,77 @@ TEST(MissionController, BlockedWayHomeLandsWhereItIs) {
   slow.v.speed = 0.05f;
   ASSERT_TRUE(slow.run_until(Phase::kLand, 120, &e));
   EXPECT_TRUE(slow.mc.returned_home());
+}
+
+// GIVEN a trail home that now runs through a wall (drawn in a frame the estimate has since left:
+// gt-building's corridor beside the north-west door) WHEN the newest scan shows home straight
+// ahead and clear THEN the flight leaves the trail for it and lands at home; without the scan it
+// is held at the wall until the stall lands it short.
+struct WalledTrailFlight {
+  bool home = false;
+  bool crossed_the_wall = false;
+  uint32_t shortcuts = 0;
+};
+WalledTrailFlight fly_home_past_a_wall(bool give_scans, bool shortcut = true) {
+  MissionRun r;
+  MissionParams p;
+  p.return_stall_s = 10.0f;
+  p.return_shortcut = shortcut;
+  ExplorerOutput e;
+  // Home (1, 2); east 2 m, north 2 m, west 1.5 m: the vehicle ends at (1.5, 4).
+  EXPECT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 160}, {{0, 0.5f, 0}, 160}, {{-0.5f, 0, 0}, 120}}));
+  // The wall the trail's first leg now crosses, x = 2.2 for y in [1, 3.5].
+  test::SegmentWorld world;
+  world.add(2.2, 1.0, 2.2, 3.5);
+  const auto crosses = [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+    if ((a.x() - 2.2f) * (b.x() - 2.2f) > 0.0f || a.x() == b.x()) return false;
+    const float y = a.y() + (b.y() - a.y()) * (2.2f - a.x()) / (b.x() - a.x());
+    return y >= 1.0f && y <= 3.5f;
+  };
+  r.v.nav.heading_rad = static_cast<float>(-M_PI / 2);  // facing south, home in the fan
+  WalledTrailFlight out;
+  for (int i = 0; i < 6000 && r.mc.phase() == Phase::kReturn; ++i) {
+    r.t += Duration::from_s(MissionRun::kDt);
+    r.v.nav.stamp = r.t;
+    const LaserScan scan = world.scan(test::LaserModel::urg04lx(), r.v.nav.position_m.x(), r.v.nav.position_m.y(),
+                                      r.v.nav.heading_rad, r.t);
+    const GuidanceSetpoint s = r.mc.step(r.t, r.v.nav, &e, give_scans ? &scan : nullptr);
+    const Eigen::Vector3f before = r.v.nav.position_m;
+    r.v.follow(s, MissionRun::kDt);
+    r.v.nav.heading_rad = s.heading_rad;
+    if (crosses(before, r.v.nav.position_m)) {  // the wall stops it
+      out.crossed_the_wall = true;
+      r.v.nav.position_m = before;
+      r.v.nav.velocity_mps.setZero();
+    }
+  }
+  out.home = r.mc.returned_home();
+  out.shortcuts = r.mc.shortcuts();
+  return out;
+}
+
+TEST(MissionController, TheFlightHomeLeavesATrailThroughAWallWhereTheScanShowsTheWayClear) {
+  const WalledTrailFlight scanned = fly_home_past_a_wall(true);
+  EXPECT_TRUE(scanned.home);
+  EXPECT_GE(scanned.shortcuts, 1u);
+  EXPECT_FALSE(scanned.crossed_the_wall);  // never even tried to
+  const WalledTrailFlight blind = fly_home_past_a_wall(false);
+  EXPECT_FALSE(blind.home);
+  EXPECT_EQ(blind.shortcuts, 0u);
+  EXPECT_TRUE(blind.crossed_the_wall);  // held there, by the wall, until the stall
+}
+
+// The shortcut is an option (MissionParams::return_shortcut), and its clearance must be positive.
+TEST(MissionController, TheShortcutIsOffWhenToldAndItsClearanceIsChecked) {
+  const WalledTrailFlight off = fly_home_past_a_wall(true, false);
+  EXPECT_FALSE(off.home);
+  EXPECT_EQ(off.shortcuts, 0u);
+  MissionController mc;
+  MissionParams p;
+  p.shortcut_clearance_m = 0.0f;
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p.shortcut_clearance_m = NAN;
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
 }
 
 TEST(MissionController, StaleEstimateTriggersFailsafeLanding) {

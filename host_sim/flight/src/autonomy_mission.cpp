@@ -204,6 +204,9 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       out.stack.explorer.srt.retrace = m.value();
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
+    } else if (key == "return_shortcut" && kind == mission::MissionKind::kExplore) {
+      if (value != "on" && value != "off") return "return_shortcut: expected on or off, got '" + value + "'";
+      out.stack.mission.return_shortcut = value == "on";
     } else if (bool* on = explorer_switch(key, out.stack.explorer); on != nullptr && kind == mission::MissionKind::kExplore) {
       if (value != "on" && value != "off") {
         std::string e = key;
@@ -432,6 +435,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
     out.emplace_back(std::string("nav.") + f.name, nav_counters.*f.member);
   out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
   out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);
+  out.emplace_back("return_shortcuts", stack_->mission().shortcuts());
   // When each phase began (its first time): an explore phase that ended well before
   // explore_s ran out of frontiers.
   for (std::size_t i = 0; i < phase_start_s_.size(); ++i) {

@@ -225,7 +225,10 @@ void AutonomyStack::guidance_task(TimeUs now) {
     ++counters_.guidance_steps;
   }
   // The mission sees the estimate as stale while a device it stands on is silent: its failsafe.
-  setpoint_ = mission_.step(now, watchdog_.for_mission(nav_), explorer_ != nullptr ? &explorer_out_ : nullptr);
+  // On the way home it may leave its trail where the newest scan, if recent, shows the way clear.
+  const bool scan_recent = ReturnVelocityBound::recent(now, dev_.laser.geometry().scan_period, newest_scan_);
+  setpoint_ = mission_.step(now, watchdog_.for_mission(nav_), explorer_ != nullptr ? &explorer_out_ : nullptr,
+                            scan_recent ? &newest_scan_ : nullptr);
   // Flying home and landing there, the explorer's approach limiter bounds the mission's
   // velocity set-point against the newest scan, matched or not (return_velocity_bound.hpp).
   const bool homing = mission_.phase() == mission::Phase::kReturn || mission_.phase() == mission::Phase::kLand;

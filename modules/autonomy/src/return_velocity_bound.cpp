@@ -2,12 +2,14 @@
 
 namespace kestrel::autonomy {
 
+bool ReturnVelocityBound::recent(TimeUs now, Duration scan_period, const LaserScan& scan) {
+  return scan.beam_count > 0 && now - scan.stamp <= scan_period * kScanMaxAgePeriods && scan.stamp - now <= scan_period;
+}
+
 Status ReturnVelocityBound::apply(TimeUs now, Duration scan_period, const LaserScan& scan, bool& scan_fresh,
                                   const NavState& nav, exploration::Explorer& explorer, GuidanceSetpoint& setpoint) {
   if (setpoint.mode != GuidanceSetpoint::Mode::kVelocity) return Status::kUnsupported;
-  const bool recent = scan.beam_count > 0 && now - scan.stamp <= scan_period * kScanMaxAgePeriods &&
-                      scan.stamp - now <= scan_period;
-  if (!recent) {
+  if (!recent(now, scan_period, scan)) {
     setpoint.velocity_mps.x() = 0.0f;
     setpoint.velocity_mps.y() = 0.0f;
     return Status::kRejected;

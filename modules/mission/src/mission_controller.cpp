@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kestrel/core/angle.hpp"
+#include "kestrel/core/clear_path.hpp"
 
 namespace kestrel::mission {
 
@@ -39,6 +40,9 @@ constexpr float kReturnFacingMinM = 0.1f;
 constexpr float kReturnGainPerS = 1.0f;
 // Flying home: coming this much nearer the carrot counts as progress.
 constexpr float kReturnProgressM = 0.1f;
+// The flight home's shortcut: a scan older than this is taken as this old (its pose carried
+// back no further; the composition passes only recent ones).
+constexpr float kMaxScanAgeS = 0.5f;
 // The most one step advances the mission's clock (timers): see step().
 constexpr Duration kMaxClockStep = Duration::from_us(1'000'000);
 }  // namespace
@@ -49,6 +53,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
       !positive_finite(p.arrive_speed_mps) || !positive_finite(p.estimate_timeout_s) ||
       !positive_finite(p.return_speed_mps) || !positive_finite(p.breadcrumb_spacing_m) ||
       !positive_finite(p.return_yaw_rate_radps) || !positive_finite(p.return_stall_s) ||
+      !positive_finite(p.shortcut_clearance_m) ||
       !(std::isfinite(p.hover_duration_s) && p.hover_duration_s >= 0) ||
       !(std::isfinite(p.preflight_s) && p.preflight_s >= 0) ||
       !(std::isfinite(p.explore_time_limit_s) && p.explore_time_limit_s >= 0) ||
@@ -69,6 +74,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
   trail_ = BreadcrumbTrail(p.breadcrumb_spacing_m);
   phase_ = Phase::kIdle;
   returned_home_ = false;
+  shortcuts_ = 0;
   seen_estimate_ = false;
   configured_ = true;
   return Status::kOk;
@@ -93,7 +99,8 @@ GuidanceSetpoint MissionController::hold(TimeUs now, const Eigen::Vector3f& p, f
   return s;
 }
 
-GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer) {
+GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer,
+                                         const LaserScan* scan) {
   const bool estimate_ok = nav.valid && nav.position_m.allFinite() && nav.velocity_mps.allFinite() &&
                            std::isfinite(nav.heading_rad);
   // The ramps integrate time between steps; a long gap (a stalled loop) must not make the
@@ -189,6 +196,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       if (explorer == nullptr || explorer->finished || timed_out) {
         return_index_ = trail_.size() == 0 ? 0 : trail_.size() - 1;
         progress_index_ = return_index_ + 1;  // the first return step counts as progress
+        shortcut_cursor_ = 0;
         progress_at_ = t;
         hold_heading_ = nav.heading_rad;
         enter(Phase::kReturn, t);
@@ -210,11 +218,6 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
     case Phase::kReturn: {
       // Fly the trail backwards, breadcrumb by breadcrumb; the first one is where exploring
       // began, near home, so the last leg is to home itself.
-      auto breadcrumb = [&](std::size_t i) {
-        Eigen::Vector3f p = trail_.size() > 0 && i > 0 ? trail_.point(i) : home_;
-        p.z() = alt;
-        return p;
-      };
       const float pass_radius = std::max(0.3f, params_.arrive_radius_m);
       // Home, wherever on the trail: an explorer may have brought the vehicle back itself (the
       // frontier explorer flies its grid's path home), and the rest of the trail would lead
@@ -223,6 +226,10 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       Eigen::Vector3f target = breadcrumb(return_index_);
       while (return_index_ > 0 && (nav.position_m - target).head<2>().norm() < pass_radius) {
         --return_index_;
+        target = breadcrumb(return_index_);
+      }
+      if (params_.return_shortcut && scan != nullptr && estimate_ok) {
+        look_for_shortcut(nav, *scan);
         target = breadcrumb(return_index_);
       }
       if (return_index_ == 0 && arrived(nav, {home_.x(), home_.y(), alt})) {
@@ -299,6 +306,42 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       return hold(now, {hold_point_.x(), hold_point_.y(), 0}, hold_heading_);
   }
   return hold(now, hold_point_, hold_heading_);
+}
+
+Eigen::Vector3f MissionController::breadcrumb(std::size_t i) const {
+  Eigen::Vector3f p = trail_.size() > 0 && i > 0 ? trail_.point(i) : home_;
+  p.z() = params_.takeoff_altitude_m;
+  return p;
+}
+
+void MissionController::look_for_shortcut(const NavState& nav, const LaserScan& scan) {
+  // Out of reach a breadcrumb costs a distance, in reach a pass over the beams: at most
+  // kExaminedPerStep of the one and one of the other per step (the Verdex's soft float).
+  constexpr std::size_t kExaminedPerStep = 64;
+  if (return_index_ == 0) return;
+  if (shortcut_cursor_ >= return_index_) shortcut_cursor_ = 0;
+  const float reach = static_cast<float>(scan.max_range_mm) * 1e-3f - params_.shortcut_clearance_m;
+  if (!(reach > 0.0f)) return;
+  // Where the laser was when the scan was taken (its middle beam): the estimate carried back at
+  // its own rates. Turning at the return's 0.5 rad/s, a scan 0.1 s old is 0.05 rad off the
+  // heading now, 0.17 m at 3.5 m: too much to ignore against the clearance.
+  const TimeUs mid = scan.stamp + scan.beam_interval * static_cast<int64_t>(scan.beam_count / 2);
+  const float age = std::clamp(static_cast<float>((nav.stamp - mid).seconds()), 0.0f, kMaxScanAgeS);
+  const Pose2 laser{nav.position_m.x() - nav.velocity_mps.x() * age, nav.position_m.y() - nav.velocity_mps.y() * age,
+                    wrap_angle(nav.heading_rad - nav.yaw_rate_radps * age)};
+  const std::size_t end = std::min(return_index_, shortcut_cursor_ + kExaminedPerStep);
+  for (std::size_t i = shortcut_cursor_; i < end; ++i) {
+    const Eigen::Vector3f p = breadcrumb(i);
+    if ((p - nav.position_m).head<2>().squaredNorm() > reach * reach) continue;
+    shortcut_cursor_ = i + 1;
+    if (straight_path_clear(scan, laser, {p.x(), p.y()}, params_.shortcut_clearance_m)) {
+      return_index_ = i;
+      shortcut_cursor_ = 0;
+      ++shortcuts_;
+    }
+    return;
+  }
+  shortcut_cursor_ = end;
 }
 
 Eigen::Vector2f MissionController::homing_velocity(const Eigen::Vector2f& offset) const {

@@ -47,6 +47,8 @@ class ReturnVelocityBound {
   // one): kUnsupported, and nothing is touched.
   Status apply(TimeUs now, Duration scan_period, const LaserScan& scan, bool& scan_fresh, const NavState& nav,
                exploration::Explorer& explorer, GuidanceSetpoint& setpoint);
+  // The rule above for a scan recent enough to steer by (the mission's shortcut home uses it too).
+  static bool recent(TimeUs now, Duration scan_period, const LaserScan& scan);
 
   // The horizontal velocity that stands until the next scan (m/s, navigation frame).
   const Eigen::Vector2f& velocity() const { return velocity_; }

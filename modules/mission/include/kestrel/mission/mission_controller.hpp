@@ -12,6 +12,15 @@
 // that the return phase flies back along. Return, and the landing after it, fly velocity
 // set-points, which the composition bounds against the laser's returns.
 //
+// The trail is drawn in the estimate's frame as it was when each breadcrumb was recorded: a
+// SLAM correction or drift since moves the vehicle's frame and not the trail, so a breadcrumb
+// can come to lie beyond a wall (gt-building, URG-04LX: flights with the estimate within 0.1 m
+// at the end held 0.4 m off the corridor's wall beside the north-west door, its breadcrumbs
+// behind it, until the stall landed them 2.7 m from home). So on the way home, given the newest
+// scan, the mission leaves the trail for the breadcrumb nearest home (home itself first) to
+// which the scan shows a straight way clear by shortcut_clearance_m (straight_path_clear):
+// one such check a step, the breadcrumbs within the laser's reach examined in turn.
+//
 // Bad input: an invalid or non-finite NavState counts towards the failsafe; a non-finite
 // explorer set-point becomes a hold (velocity zero, where the vehicle is). Time: the phase
 // timers run on the mission's own clock, which follows `now` but does not move when `now`
@@ -56,6 +65,8 @@ struct MissionParams {
   float return_yaw_rate_radps = 0.5f;  // heading turns towards the way home at most this fast
   float return_stall_s = 30.0f;        // no progress home for this long: land where it is
   float breadcrumb_spacing_m = 0.4f;
+  bool return_shortcut = true;         // leave the trail where the scan shows a way nearer home
+  float shortcut_clearance_m = 0.45f;  // ... clear by this (the approach limiter stops at 0.4 m)
 };
 
 // What the explorer says at this guidance step.
@@ -71,8 +82,11 @@ class MissionController {
   // Checks parameters and waypoints (finite, positive altitudes, within capacity).
   Status configure(MissionKind kind, const MissionParams& params, const IVector<Waypoint>* waypoints = nullptr);
 
-  // One guidance step: the set-point to fly now. `explorer` is read only in the explore phase.
-  GuidanceSetpoint step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer);
+  // One guidance step: the set-point to fly now. `explorer` is read only in the explore phase,
+  // `scan` (the newest, its laser at the vehicle's origin; nullptr: none recent) only on the way
+  // home, its pose the estimate's carried back to when it was taken.
+  GuidanceSetpoint step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer,
+                        const LaserScan* scan = nullptr);
 
   Phase phase() const { return phase_; }
   bool finished() const { return phase_ == Phase::kLanded; }
@@ -87,6 +101,7 @@ class MissionController {
   const Eigen::Vector3f& home() const { return home_; }
   std::size_t waypoint_index() const { return waypoint_index_; }
   const BreadcrumbTrail& trail() const { return trail_; }
+  uint32_t shortcuts() const { return shortcuts_; }  // breadcrumbs skipped on the scan's word
   // Time the hover phase began: the hover metric is measured from here.
   bool hovering() const { return phase_ == Phase::kHover; }
 
@@ -97,6 +112,11 @@ class MissionController {
   // Flying home and landing there: the horizontal velocity towards a point `offset` away, at
   // the return speed until one second from it, then in proportion (arrived at, not overflown).
   Eigen::Vector2f homing_velocity(const Eigen::Vector2f& offset) const;
+  // Flying home: breadcrumb i at the flight altitude, home for i = 0.
+  Eigen::Vector3f breadcrumb(std::size_t i) const;
+  // Examines the next breadcrumbs nearer home than return_index_ and checks the first within
+  // the scan's reach; a clear way makes it the target.
+  void look_for_shortcut(const NavState& nav, const LaserScan& scan);
 
   MissionKind kind_ = MissionKind::kHover;
   MissionParams params_;
@@ -122,6 +142,8 @@ class MissionController {
   float progress_distance_ = 0;
   TimeUs progress_at_;
   bool returned_home_ = false;
+  std::size_t shortcut_cursor_ = 0;  // the breadcrumb look_for_shortcut examines next
+  uint32_t shortcuts_ = 0;
   bool configured_ = false;
 };
 
