@@ -138,6 +138,16 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_FALSE(home.stack.mission.return_shortcut);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"return_shortcut", "no"}}}, home),
             "return_shortcut: expected on or off, got 'no'");
+  // What the retrace counts, and what ends it.
+  FlightOptions target;
+  EXPECT_EQ(target.stack.explorer.srt.retrace_target, exploration::RetraceTarget::kUnflown);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace_target", "frontier"}}},
+                                 target),
+            "");
+  EXPECT_EQ(target.stack.explorer.srt.retrace_target, exploration::RetraceTarget::kFrontier);
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace_target", "seen"}}},
+                                 target),
+            "srt_retrace_target: expected unflown or frontier, got 'seen'");
   // Frontiers kept beside walls.
   FlightOptions rescue;
   EXPECT_FALSE(rescue.stack.explorer.srt.rescue_frontiers);

@@ -202,6 +202,10 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       const Result<exploration::RetraceMode> m = exploration::parse_retrace_mode(value.c_str());
       if (!m.ok()) return "srt_retrace: expected off, guarded or on, got '" + value + "'";
       out.stack.explorer.srt.retrace = m.value();
+    } else if (key == "srt_retrace_target" && kind == mission::MissionKind::kExplore) {
+      const Result<exploration::RetraceTarget> t = exploration::parse_retrace_target(value.c_str());
+      if (!t.ok()) return "srt_retrace_target: expected unflown or frontier, got '" + value + "'";
+      out.stack.explorer.srt.retrace_target = t.value();
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
     } else if (key == "return_shortcut" && kind == mission::MissionKind::kExplore) {

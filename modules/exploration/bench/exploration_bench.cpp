@@ -46,11 +46,17 @@ LaserScan room_scan(uint16_t beams, double fov_deg, double x, double y, double h
   return s;
 }
 
-void guidance_step(benchmark::State& state, uint16_t beams, double fov_deg) {
+// frontier_marks: srt.retrace counting the coarse grid's frontier, whose planner marks a slice
+// of every scan's beams on its laser layers (srt_star_planner.hpp, mark_seen).
+void guidance_step(benchmark::State& state, uint16_t beams, double fov_deg, bool frontier_marks = false) {
   auto explorer = std::make_unique<BlendExplorer>();
   LaserScan scan = room_scan(beams, fov_deg, 2.0, 1.5, 0.3, 6.0, 4.0);
   Params params;
   params.guidance.waypoint_time_limit_s = 1e6f;  // steady state: no restart inside the loop
+  if (frontier_marks) {
+    params.srt.retrace = RetraceMode::kAlways;
+    params.srt.retrace_target = RetraceTarget::kFrontier;
+  }
   if (explorer->configure(params, BeamGeometry::of(scan)) != Status::kOk) {
     state.SkipWithError("configure failed");
     return;
@@ -161,6 +167,12 @@ void BM_GuidanceStepUrg(benchmark::State& s) {
 void BM_GuidanceStepUtm(benchmark::State& s) {
   guidance_step(s, 1081, 270.0);
 }
+void BM_GuidanceStepFrontierMarksUrg(benchmark::State& s) {
+  guidance_step(s, 682, 240.0, true);
+}
+void BM_GuidanceStepFrontierMarksUtm(benchmark::State& s) {
+  guidance_step(s, 1081, 270.0, true);
+}
 void BM_ApproachCornerUrg(benchmark::State& s) {
   approach_limit_corner(s, 682, 240.0);
 }
@@ -205,6 +217,24 @@ void BM_UnflownCount(benchmark::State& s) {
   auto bearings = std::make_unique<UnflownBearings>();
   for (auto _ : s) {
     benchmark::DoNotOptimize(bearings->count(*grid, {12.0f, 8.0f}));
+    benchmark::DoNotOptimize(bearings->total());
+  }
+}
+// The same count of the coarse grid's frontier (RetraceTarget::kFrontier, work::kFrontierCells):
+// the corridor and the rooms' first metres seen free, their walls marked, the rest unseen.
+void BM_FrontierCount(benchmark::State& s) {
+  auto grid = std::make_unique<VisitedGrid>();
+  grid->mark({12.0f, 8.0f});
+  for (float x = 0.5f; x <= 23.5f; x += 0.5f) {
+    for (float y = 7.0f; y <= 9.0f; y += 0.5f) grid->mark_seen({x, y});
+    for (float y = 4.0f; y <= 12.0f; y += 1.0f)
+      if (static_cast<int>(x) % 6 == 2) grid->mark_seen({x, y});  // a door every 6 m
+    grid->mark_wall({x, 6.5f});
+    grid->mark_wall({x, 9.5f});
+  }
+  auto bearings = std::make_unique<UnflownBearings>();
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(bearings->count(*grid, {12.0f, 8.0f}, RetraceTarget::kFrontier));
     benchmark::DoNotOptimize(bearings->total());
   }
 }
@@ -301,6 +331,9 @@ BENCHMARK(BM_SrtArrivalCyclesUrg)->Name("exploration/srt_arrival_cycles/urg04lx_
 BENCHMARK(BM_SrtArrivalCyclesCorridorUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682_corridor")->DenseRange(1, 16);
 BENCHMARK(BM_SrtArrivalCyclesUtm)->Name("exploration/srt_arrival_cycles/utm30lx_1081")->DenseRange(1, 8);
 BENCHMARK(BM_UnflownCount)->Name("exploration/unflown_count");
+BENCHMARK(BM_FrontierCount)->Name("exploration/frontier_count");
+BENCHMARK(BM_GuidanceStepFrontierMarksUrg)->Name("exploration/guidance_step_frontier_marks/urg04lx_682");
+BENCHMARK(BM_GuidanceStepFrontierMarksUtm)->Name("exploration/guidance_step_frontier_marks/utm30lx_1081");
 BENCHMARK(BM_TrailSearch)->Name("exploration/trail_search/1024");
 
 }  // namespace

@@ -49,6 +49,20 @@ Result<RetraceMode> parse_retrace_mode(const char* name) {
   return parse_by_name(name, kRetraceModes);
 }
 
+const char* to_string(RetraceTarget t) {
+  switch (t) {
+    case RetraceTarget::kUnflown:
+      return "unflown";
+    case RetraceTarget::kFrontier:
+      return "frontier";
+  }
+  return "unknown";
+}
+
+Result<RetraceTarget> parse_retrace_target(const char* name) {
+  return parse_by_name(name, kRetraceTargets);
+}
+
 Status Params::validate() const {
   const bool wall_ok = positive(wall.target_range_m) && positive(wall.safe_range_m) &&
                        wall.safe_range_m < wall.target_range_m && non_negative(wall.gain_wf) &&
@@ -58,7 +72,8 @@ Status Params::validate() const {
                       positive(srt.step_min_fraction) && srt.step_min_fraction <= srt.step_max_fraction &&
                       srt.step_max_fraction <= 1.0f && non_negative(srt.clearance_m) &&
                       non_negative(srt.coverage_margin_m) && srt.max_attempts_per_frontier >= 1 &&
-                      listed(srt.steer, kSteerUnflownModes) && listed(srt.retrace, kRetraceModes);
+                      listed(srt.steer, kSteerUnflownModes) && listed(srt.retrace, kRetraceModes) &&
+                      listed(srt.retrace_target, kRetraceTargets);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
     const KeepOut& k = srt.keep_out[i];

@@ -140,6 +140,7 @@ void SrtStarPlanner::reset() {
   look_heading_ = 0;
   look_backs_ = 0;
   trail_.clear();
+  seen_phase_ = 0;
   trail_scanned_ = false;
   trail_next_ = trail_best_ = trail_reached_ = 0;
   retrace_after_reached_ = retrace_after_next_ = 0;
@@ -170,6 +171,7 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
   // Not while an arrival step is worked on: its result must not depend on the poses given
   // meanwhile (sliced and one-shot steps agree), and the vehicle waits on the spot.
   if (step_ == Step::kNone) visited_.mark({pose.x, pose.y});
+  if (step_ == Step::kNone && marks_seen()) last_work_ += mark_seen(pose, scan);
   // The trail keeps its indices while the vehicle flies back along it.
   if (retraces_enabled() && step_ == Step::kNone && mode_ != PlannerMode::kRetrace) trail_.record({pose.x, pose.y});
 
@@ -489,6 +491,68 @@ uint32_t SrtStarPlanner::hand_up_or_drop(std::size_t i) {
   return used;
 }
 
+uint32_t SrtStarPlanner::mark_seen(const Pose2& pose, const LaserScan& scan) {
+  // A slice of every scan's beams, kSeenBeamsPerCall evenly spread and a different slice each
+  // call, so that a scan costs the same small share of the cycle with either laser and every
+  // beam direction is marked within about a second (the URG-04LX: 62 beams 3.9 degrees apart,
+  // 11 slices). The nodes' scans alone left a door seen in passing as one or two cells (the
+  // kinematic building: a flight that never entered the east hall ended in the start room).
+  // Half-cell steps: a cell a beam crosses for half a metre or more is seen.
+  constexpr std::size_t kSeenBeamsPerCall = 64;
+  constexpr float kStepM = 0.5f * VisitedGrid::kCellM;
+  // Beyond the retrace's count (UnflownBearings::kReachCells) a cell is counted only from
+  // further along the path, whose own scans see it nearer.
+  constexpr float kReachM = static_cast<float>(UnflownBearings::kReachCells) * VisitedGrid::kCellM;
+  if (scan.beam_count == 0) return 0;
+  const std::size_t stride = (scan.beam_count + kSeenBeamsPerCall - 1) / kSeenBeamsPerCall;
+  const std::size_t phase = seen_phase_ % stride;
+  seen_phase_ = static_cast<uint16_t>((phase + 1) % stride);
+  // Directions in the frame of the scan's clockwise edge, tabled when the arrival's tables fit
+  // this scan's geometry (SectorScan), else computed.
+  const bool tabled = sectors_.beam_table_fits(scan);
+  const float edge = pose.theta + SectorScan::start_of(scan);
+  const float c = std::cos(edge), s = std::sin(edge);
+  const float step = std::fabs(scan.angle_step_rad);
+  const bool ccw = scan.angle_step_rad > 0.0f;
+  const Point2 from{pose.x, pose.y};
+  uint32_t used = work::kTableEntry;
+  for (std::size_t i = phase; i < scan.beam_count; i += stride) {
+    const uint16_t r_mm = scan.range_mm[i];
+    // Nothing within range reads as free out to R_p, as SRT's own sectors read it; a dropout
+    // or a return too near says nothing.
+    const bool hit = LaserScan::is_return(r_mm);
+    if (!hit && r_mm != range_code::kNoReturn) {
+      used += 1;
+      continue;
+    }
+    float bc, bs;
+    if (tabled) {
+      bc = sectors_.beam_cos(i);
+      bs = sectors_.beam_sin(i);
+    } else {
+      const std::size_t k = ccw ? i : scan.beam_count - 1 - i;
+      const float rel = (static_cast<float>(k) + 0.5f) * step;
+      bc = std::cos(rel);
+      bs = std::sin(rel);
+      used += work::kTableEntry;
+    }
+    const float ux = c * bc - s * bs, uy = s * bc + c * bs;
+    const float r = hit ? static_cast<float>(r_mm) * 1e-3f : srt_.perception_range_m;
+    const Point2 end{from.x + r * ux, from.y + r * uy};
+    used += work::kPathBeam + (srt_.keep_out_count > 0 ? work::kKeepOutTest : 0);
+    // A keep-out is glass the beams pass: what they show behind it is not the way there.
+    if (crosses_keep_out(from, end)) continue;
+    if (hit) visited_.mark_wall(end);
+    // Free up to half a cell short of the return: the return's own cell is the wall's.
+    const float free_m = std::min(hit ? r - kStepM : r, kReachM);
+    for (float t = kStepM; t <= free_m; t += kStepM) {
+      visited_.mark_seen({from.x + t * ux, from.y + t * uy});
+      used += work::kSeenStep;
+    }
+  }
+  return used;
+}
+
 uint32_t SrtStarPlanner::widen_extent_to_returns() {
   // The flown area alone is a poor outline of the building: a room never flown is outside its
   // bounding box and so never steered to (gt-building: the south rooms, when the first flights
@@ -571,7 +635,7 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
     trail_best_ = trail_next_;
     unflown_best_ = 0;
     step_ = Step::kTrailScan;
-    const uint32_t used = bearings_.count(visited_, {job_pose_.x, job_pose_.y});
+    const uint32_t used = bearings_.count(visited_, {job_pose_.x, job_pose_.y}, srt_.retrace_target);
     unflown_here_ = bearings_.total();
     bearings_counted_ = false;
     return used;
@@ -582,7 +646,7 @@ uint32_t SrtStarPlanner::backtrack_or_finish(TimeUs now) {
 uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
   if (trail_next_ >= kRetraceStride) {
     trail_next_ -= kRetraceStride;
-    const uint32_t used = bearings_.count(visited_, trail_.point(trail_next_));
+    const uint32_t used = bearings_.count(visited_, trail_.point(trail_next_), srt_.retrace_target);
     if (bearings_.total() > unflown_best_) {
       unflown_best_ = bearings_.total();
       trail_best_ = trail_next_;
@@ -590,7 +654,8 @@ uint32_t SrtStarPlanner::scan_trail(TimeUs now) {
     return used;
   }
   bearings_counted_ = false;
-  const bool worth_it = unflown_best_ >= kRetraceMinUnflown && 4 * unflown_best_ >= kRetraceGainQuarters * unflown_here_ &&
+  const uint32_t least = srt_.retrace_target == RetraceTarget::kFrontier ? kRetraceMinFrontier : kRetraceMinUnflown;
+  const bool worth_it = unflown_best_ >= least && 4 * unflown_best_ >= kRetraceGainQuarters * unflown_here_ &&
                         distance({job_pose_.x, job_pose_.y}, trail_.point(trail_best_)) >= kRetraceStepM;
   if (!worth_it) return run_out_on_root(now);
   // Back along the trail, from the earliest visit of where the vehicle is (next_leg's legs).

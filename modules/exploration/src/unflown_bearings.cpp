@@ -33,7 +33,8 @@ UnflownBearings::UnflownBearings() {
   }
 }
 
-uint32_t UnflownBearings::count(const VisitedGrid& grid, Point2 from) {
+uint32_t UnflownBearings::count(const VisitedGrid& grid, Point2 from, RetraceTarget what) {
+  const bool frontier = what == RetraceTarget::kFrontier;
   cells_.fill(0);
   int cx = 0, cy = 0;
   if (!grid.cell_of(from, cx, cy)) return 1;
@@ -43,11 +44,12 @@ uint32_t UnflownBearings::count(const VisitedGrid& grid, Point2 from) {
       const uint8_t bin = bin_of_offset_[offset];
       if (bin == kBeyondReach) continue;
       const int ix = cx + dx, iy = cy + dy;
-      if (grid.in_extent(ix, iy) && !grid.visited_cell(ix, iy))
-        cells_[bin] = static_cast<uint16_t>(cells_[bin] + weight_of_offset_[offset]);
+      const bool counted =
+          frontier ? grid.frontier_cell(ix, iy) : grid.in_extent(ix, iy) && !grid.visited_cell(ix, iy);
+      if (counted) cells_[bin] = static_cast<uint16_t>(cells_[bin] + weight_of_offset_[offset]);
     }
   }
-  return static_cast<uint32_t>(kSide * kSide / work::kGridCells);
+  return static_cast<uint32_t>(kSide * kSide / (frontier ? work::kFrontierCells : work::kGridCells));
 }
 
 uint32_t UnflownBearings::score(float bearing_rad) const {

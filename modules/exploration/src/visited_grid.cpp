@@ -8,6 +8,8 @@ namespace kestrel::exploration {
 
 void VisitedGrid::clear() {
   bits_.fill(0);
+  seen_.fill(0);
+  wall_.fill(0);
   anchored_ = false;
   min_ix_ = min_iy_ = kSide;
   max_ix_ = max_iy_ = -1;
@@ -59,10 +61,33 @@ bool VisitedGrid::visited(Point2 p) const {
   return cell_of(p, ix, iy) && visited_cell(ix, iy);
 }
 
-bool VisitedGrid::visited_cell(int ix, int iy) const {
+bool VisitedGrid::bit(const Layer& layer, int ix, int iy) {
   if (ix < 0 || iy < 0 || ix >= kSide || iy >= kSide) return false;
   const std::size_t i = static_cast<std::size_t>(iy) * kSide + static_cast<std::size_t>(ix);
-  return (bits_[i / 64] >> (i % 64)) & 1u;
+  return (layer[i / 64] >> (i % 64)) & 1u;
+}
+
+void VisitedGrid::set_bit(Layer& layer, Point2 p) const {
+  int ix = 0, iy = 0;
+  if (!cell_of(p, ix, iy)) return;
+  const std::size_t i = static_cast<std::size_t>(iy) * kSide + static_cast<std::size_t>(ix);
+  layer[i / 64] |= uint64_t{1} << (i % 64);
+}
+
+bool VisitedGrid::visited_cell(int ix, int iy) const { return bit(bits_, ix, iy); }
+
+void VisitedGrid::mark_seen(Point2 p) { set_bit(seen_, p); }
+
+void VisitedGrid::mark_wall(Point2 p) { set_bit(wall_, p); }
+
+bool VisitedGrid::seen_cell(int ix, int iy) const { return bit(seen_, ix, iy); }
+
+bool VisitedGrid::wall_cell(int ix, int iy) const { return bit(wall_, ix, iy); }
+
+bool VisitedGrid::frontier_cell(int ix, int iy) const {
+  if (ix < 0 || iy < 0 || ix >= kSide || iy >= kSide) return false;
+  if (visited_cell(ix, iy) || seen_cell(ix, iy) || wall_cell(ix, iy)) return false;
+  return open_cell(ix - 1, iy) || open_cell(ix + 1, iy) || open_cell(ix, iy - 1) || open_cell(ix, iy + 1);
 }
 
 bool VisitedGrid::in_extent(int ix, int iy) const {

@@ -84,6 +84,22 @@ const char* to_string(RetraceMode m);
 // kInvalidArgument for any other name, or nullptr.
 Result<RetraceMode> parse_retrace_mode(const char* name);
 
+// What the retrace counts in reach of a point of the path flown (unflown_bearings.hpp). Cells
+// never flown are there wherever the vehicle has not been, behind walls and outside an L of the
+// building included, so a retrace counting them almost never lets exploration end before the
+// time limit (7 of 150 URG-04LX flights in gt-building; EXPERIMENTS.md). The frontier of what
+// the nodes' scans showed (a cell never seen, beside one seen free, not a wall) is empty where
+// the building is done, so a flight ends when no point of its path has any left.
+enum class RetraceTarget : uint8_t {
+  kUnflown,   // cells never flown, inside the flown area's bounding box
+  kFrontier,  // the coarse grid's frontier of the nodes' scans (visited_grid.hpp)
+};
+inline constexpr RetraceTarget kRetraceTargets[] = {RetraceTarget::kUnflown, RetraceTarget::kFrontier};
+// "unflown", "frontier" (kestrel-sim's srt_retrace_target=...).
+const char* to_string(RetraceTarget t);
+// kInvalidArgument for any other name, or nullptr.
+Result<RetraceTarget> parse_retrace_target(const char* name);
+
 struct SrtParams {
   uint16_t sector_count = 32;             // sectors the scan is divided into (<= kMaxSectors)
   float perception_range_m = 3.5f;        // R_p: a sector with no return closer is obstacle-free
@@ -114,6 +130,8 @@ struct SrtParams {
                                             // first flies back along the path it came by to
                                             // where more is (srt_star_planner.hpp; not in
                                             // paper 002)
+  RetraceTarget retrace_target = RetraceTarget::kUnflown;  // what draws it back (and, when
+                                                           // none is left, ends exploration)
   SteerUnflown steer = SteerUnflown::kAfterRestart;  // which draws face the building not yet
                                                     // flown (unflown_bearings.hpp; not in
                                                     // paper 002, whose draws kNever makes)

@@ -180,6 +180,7 @@ class SrtStarPlanner {
   static constexpr std::size_t kRetraceStride = 4;       // trail points between two counts
   static constexpr uint32_t kRetraceGainQuarters = 5;    // the best point against where it is
   static constexpr uint32_t kRetraceMinUnflown = 64;     // weighted cells (unflown_bearings.hpp)
+  static constexpr uint32_t kRetraceMinFrontier = 16;    // ... of the frontier (retrace_target)
   static constexpr float kRetraceStepM = 2.0f;
   static constexpr float kRetraceArrivalM = 0.8f;  // at most; less before a turn (no corner cut)
   // An earlier point this near is the same place: under FlownHistory's spacing, so that the
@@ -239,6 +240,11 @@ class SrtStarPlanner {
   bool crosses_keep_out(Point2 a, Point2 b) const;
   // steer_unflown: widens the flown grid's extent to the arrival scan's returns.
   uint32_t widen_extent_to_returns();
+  // The retrace counts the coarse grid's frontier: the scans given mark its laser layers.
+  bool marks_seen() const { return retraces_enabled() && srt_.retrace_target == RetraceTarget::kFrontier; }
+  // Marks a slice of the scan's beams (the next in turn) on the visited grid's laser layers.
+  // Returns the work units it cost.
+  uint32_t mark_seen(const Pose2& pose, const LaserScan& scan);
   // Drops the current node's frontiers whose sight line from the node crosses a keep-out box.
   uint32_t drop_frontiers_seen_through_keep_outs();
 
@@ -289,6 +295,7 @@ class SrtStarPlanner {
   // does not change meanwhile): the earliest visit of the current end, and the next end.
   std::size_t retrace_after_reached_ = 0, retrace_after_next_ = 0;
   uint32_t unflown_best_ = 0, unflown_here_ = 0;
+  uint16_t seen_phase_ = 0;  // mark_seen: the slice of beams marked next
   uint32_t retraces_ = 0;
 
   // The arrival step in progress.

@@ -20,6 +20,9 @@
 // URG-04LX's steered flights crossed the corridor again and again (every room on 4 of 30).
 // Weighted: 18 and 21 of 30 (main at 9be8eab; EXPERIMENTS.md).
 //
+// The retrace may count the coarse grid's frontier cells instead (RetraceTarget::kFrontier,
+// VisitedGrid::frontier_cell), weighed alike.
+//
 // No trigonometry per cell: each cell offset's bin and weight are tabled once, at
 // construction. 2.2 KB; a count is 37.4 k instructions on the Verdex (exploration/unflown_count;
 // 37.1 k before the weights).
@@ -27,6 +30,7 @@
 #include <cstdint>
 
 #include "kestrel/core/se2.hpp"
+#include "kestrel/exploration/params.hpp"
 #include "kestrel/exploration/visited_grid.hpp"
 
 namespace kestrel::exploration {
@@ -41,8 +45,9 @@ class UnflownBearings {
 
   UnflownBearings();
 
-  // Counts the unflown cells around `from` by bearing. Returns the work units it cost.
-  uint32_t count(const VisitedGrid& grid, Point2 from);
+  // Counts the unflown cells (or the frontier cells) around `from` by bearing. Returns the work
+  // units it cost.
+  uint32_t count(const VisitedGrid& grid, Point2 from, RetraceTarget what = RetraceTarget::kUnflown);
   // Weighted unflown cells within +-kHalfConeBins bins of `bearing_rad` (world frame) at the
   // last count; 0 for a non-finite bearing.
   uint32_t score(float bearing_rad) const;

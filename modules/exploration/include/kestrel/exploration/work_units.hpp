@@ -32,5 +32,8 @@ inline constexpr uint32_t kKeepOutTest = 20;         // a segment against the ke
 inline constexpr uint32_t kFrontierScan = 16;        // frontiers per unit when picking one of a node
 inline constexpr uint32_t kGridCells = 3;            // visited-grid cells per unit: UnflownBearings::count,
                                                      // 37.4 k for its 33 x 33 (exploration/unflown_count)
+inline constexpr uint32_t kFrontierCells = 1;        // ... counting frontier cells (up to five lookups each)
+inline constexpr uint32_t kSeenStep = 4;             // one step along a beam, its cell marked seen
+                                                     // (two divisions and floors in software)
 
 }  // namespace kestrel::exploration::work
