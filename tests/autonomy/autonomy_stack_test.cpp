@@ -322,6 +322,20 @@ TEST_F(AutonomyStackTest, ExploreMissionRefusesALaserWithoutBeams) {
   EXPECT_NE(r.stack->explorer(), nullptr);
 }
 
+// The operator's keep-out boxes are the explorer's parameters; the flight home's shortcut must
+// keep out of them too (the laser sees through the glass they mark), so the stack hands them on.
+TEST_F(AutonomyStackTest, TheMissionKeepsOutOfTheExplorersKeepOutBoxes) {
+  StackConfig c = Rig::config();
+  c.mission_kind = mission::MissionKind::kExplore;
+  c.explorer.srt.keep_out[0] = {2.0f, 8.9f, 5.0f, 9.1f};
+  c.explorer.srt.keep_out_count = 1;
+  ASSERT_EQ(r.stack->configure(c), Status::kOk);
+  const mission::MissionParams& p = r.stack->mission().params();
+  ASSERT_EQ(p.keep_out_count, 1u);
+  EXPECT_FLOAT_EQ(p.keep_out[0].x_min, 2.0f);
+  EXPECT_FLOAT_EQ(p.keep_out[0].y_max, 9.1f);
+}
+
 // Before start() the loop must not touch a device (the firmware may poll while the sensors
 // are still being brought up): nothing is read, nothing is sent, nothing counted.
 TEST_F(AutonomyStackTest, BeforeStartNothingRunsAndNoDeviceIsTouched) {

@@ -288,16 +288,23 @@ TEST(MissionController, BlockedWayHomeLandsWhereItIs) {
 // gt-building's corridor beside the north-west door) WHEN the newest scan shows home straight
 // ahead and clear THEN the flight leaves the trail for it and lands at home; without the scan it
 // is held at the wall until the stall lands it short.
+struct WalledTrailFlight;
+WalledTrailFlight fly_home_past_a_wall(bool give_scans, bool shortcut = true, const KeepOut* keep_out = nullptr);
 struct WalledTrailFlight {
   bool home = false;
   bool crossed_the_wall = false;
+  bool entered_the_keep_out = false;
   uint32_t shortcuts = 0;
 };
-WalledTrailFlight fly_home_past_a_wall(bool give_scans, bool shortcut = true) {
+WalledTrailFlight fly_home_past_a_wall(bool give_scans, bool shortcut, const KeepOut* keep_out) {
   MissionRun r;
   MissionParams p;
   p.return_stall_s = 10.0f;
   p.return_shortcut = shortcut;
+  if (keep_out != nullptr) {
+    p.keep_out[0] = *keep_out;
+    p.keep_out_count = 1;
+  }
   ExplorerOutput e;
   // Home (1, 2); east 2 m, north 2 m, west 1.5 m: the vehicle ends at (1.5, 4).
   EXPECT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 160}, {{0, 0.5f, 0}, 160}, {{-0.5f, 0, 0}, 120}}));
@@ -320,6 +327,9 @@ WalledTrailFlight fly_home_past_a_wall(bool give_scans, bool shortcut = true) {
     const Eigen::Vector3f before = r.v.nav.position_m;
     r.v.follow(s, MissionRun::kDt);
     r.v.nav.heading_rad = s.heading_rad;
+    if (keep_out != nullptr && keep_out->crossed_by({before.x(), before.y()},
+                                                    {r.v.nav.position_m.x(), r.v.nav.position_m.y()}, 0.0f))
+      out.entered_the_keep_out = true;
     if (crosses(before, r.v.nav.position_m)) {  // the wall stops it
       out.crossed_the_wall = true;
       r.v.nav.position_m = before;
@@ -342,13 +352,32 @@ TEST(MissionController, TheFlightHomeLeavesATrailThroughAWallWhereTheScanShowsTh
   EXPECT_TRUE(blind.crossed_the_wall);  // held there, by the wall, until the stall
 }
 
-// The shortcut is an option (MissionParams::return_shortcut), and its clearance must be positive.
+// GIVEN the same flight with an operator's keep-out box (glass) across the straight way home,
+// which the laser sees through WHEN flying home THEN no shortcut enters the box grown by the
+// clearance: the vehicle keeps to its trail, as it would without the scan.
+TEST(MissionController, TheFlightHomesShortcutKeepsOutOfTheOperatorsBoxes) {
+  const KeepOut glass{0.8f, 2.9f, 1.8f, 3.1f};  // across the way from (1.5, 4) to home (1, 2)
+  const WalledTrailFlight kept = fly_home_past_a_wall(true, true, &glass);
+  EXPECT_FALSE(kept.entered_the_keep_out);
+  EXPECT_FALSE(kept.home);  // the trail through the wall was all that was left
+  const WalledTrailFlight free = fly_home_past_a_wall(true);
+  EXPECT_TRUE(free.home);
+}
+
+// The shortcut is an option (MissionParams::return_shortcut), its clearance must be positive, and
+// its keep-out boxes valid and at most kMaxKeepOuts.
 TEST(MissionController, TheShortcutIsOffWhenToldAndItsClearanceIsChecked) {
   const WalledTrailFlight off = fly_home_past_a_wall(true, false);
   EXPECT_FALSE(off.home);
   EXPECT_EQ(off.shortcuts, 0u);
   MissionController mc;
   MissionParams p;
+  p.keep_out_count = 1;
+  p.keep_out[0] = {2, 2, 1, 1};  // corners swapped
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p.keep_out_count = kMaxKeepOuts + 1;
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p.keep_out_count = 0;
   p.shortcut_clearance_m = 0.0f;
   EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
   p.shortcut_clearance_m = NAN;

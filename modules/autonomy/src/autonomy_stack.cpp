@@ -41,7 +41,11 @@ Status AutonomyStack::configure(const StackConfig& c) {
     return Status::kInvalidArgument;
   }
   watchdog_.configure(c.sensor_timeouts);
-  if (mission_.configure(c.mission_kind, c.mission, &c.waypoints) != Status::kOk) {
+  // The operator's keep-out boxes are the explorer's; the flight home keeps out of them too.
+  mission::MissionParams mp = c.mission;
+  mp.keep_out = c.explorer.srt.keep_out;
+  mp.keep_out_count = c.explorer.srt.keep_out_count;
+  if (mission_.configure(c.mission_kind, mp, &c.waypoints) != Status::kOk) {
     configure_error_ = "mission parameters or waypoints";
     return Status::kInvalidArgument;
   }

@@ -75,11 +75,7 @@ Status Params::validate() const {
                       listed(srt.steer, kSteerUnflownModes) && listed(srt.retrace, kRetraceModes) &&
                       listed(srt.retrace_target, kRetraceTargets);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
-  for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) {
-    const KeepOut& k = srt.keep_out[i];
-    keep_out_ok = std::isfinite(k.x_min) && std::isfinite(k.y_min) && std::isfinite(k.x_max) &&
-                  std::isfinite(k.y_max) && k.x_min <= k.x_max && k.y_min <= k.y_max;
-  }
+  for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) keep_out_ok = srt.keep_out[i].valid();
   const bool guidance_ok = positive(guidance.arrival_distance_m) && non_negative(guidance.gain_fr) &&
                            positive(guidance.speed_limit_mps) && positive(guidance.yaw_rate_limit_radps) &&
                            positive(guidance.waypoint_time_limit_s) && positive(guidance.blocked_arrival_distance_m) &&

@@ -575,26 +575,8 @@ uint32_t SrtStarPlanner::widen_extent_to_returns() {
 }
 
 bool SrtStarPlanner::crosses_keep_out(Point2 a, Point2 b) const {
-  const float grow = srt_.clearance_m;
-  const float d[2] = {b.x - a.x, b.y - a.y};
-  const float o[2] = {a.x, a.y};
-  for (std::size_t i = 0; i < srt_.keep_out_count; ++i) {
-    const KeepOut& k = srt_.keep_out[i];
-    const float lo[2] = {k.x_min - grow, k.y_min - grow}, hi[2] = {k.x_max + grow, k.y_max + grow};
-    // Slabs: the part of the segment (parameter 0..1) inside the box on both axes.
-    float t0 = 0.0f, t1 = 1.0f;
-    for (int axis = 0; axis < 2 && t0 <= t1; ++axis) {
-      if (std::fabs(d[axis]) < 1e-9f) {
-        if (o[axis] < lo[axis] || o[axis] > hi[axis]) t0 = 2.0f;  // parallel and outside
-        continue;
-      }
-      float ta = (lo[axis] - o[axis]) / d[axis], tb = (hi[axis] - o[axis]) / d[axis];
-      if (ta > tb) std::swap(ta, tb);
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
-    }
-    if (t0 <= t1) return true;
-  }
+  for (std::size_t i = 0; i < srt_.keep_out_count; ++i)
+    if (srt_.keep_out[i].crossed_by(a, b, srt_.clearance_m)) return true;
   return false;
 }
 

@@ -59,6 +59,9 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
       !(std::isfinite(p.explore_time_limit_s) && p.explore_time_limit_s >= 0) ||
       !(std::isfinite(p.landed_altitude_m) && p.landed_altitude_m >= 0 && p.landed_altitude_m < p.takeoff_altitude_m))
     return Status::kInvalidArgument;
+  if (p.keep_out_count > kMaxKeepOuts) return Status::kInvalidArgument;
+  for (std::size_t i = 0; i < p.keep_out_count; ++i)
+    if (!p.keep_out[i].valid()) return Status::kInvalidArgument;
   waypoints_.clear();
   if (kind == MissionKind::kWaypoints) {
     if (waypoints == nullptr || waypoints->empty()) return Status::kInvalidArgument;
@@ -334,7 +337,11 @@ void MissionController::look_for_shortcut(const NavState& nav, const LaserScan& 
     const Eigen::Vector3f p = breadcrumb(i);
     if ((p - nav.position_m).head<2>().squaredNorm() > reach * reach) continue;
     shortcut_cursor_ = i + 1;
-    if (straight_path_clear(scan, laser, {p.x(), p.y()}, params_.shortcut_clearance_m)) {
+    bool kept_out = false;
+    for (std::size_t k = 0; k < params_.keep_out_count && !kept_out; ++k)
+      kept_out = params_.keep_out[k].crossed_by({nav.position_m.x(), nav.position_m.y()}, {p.x(), p.y()},
+                                                params_.shortcut_clearance_m);
+    if (!kept_out && straight_path_clear(scan, laser, {p.x(), p.y()}, params_.shortcut_clearance_m)) {
       return_index_ = i;
       shortcut_cursor_ = 0;
       ++shortcuts_;

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "kestrel/core/keep_out.hpp"
 #include "kestrel/core/status.hpp"
 
 namespace kestrel::exploration {
@@ -15,15 +16,11 @@ inline constexpr std::size_t kMaxSectors = 64;                      // sectors p
 inline constexpr std::size_t kMaxNodes = 256;                       // SRT nodes (waypoints reached)
 inline constexpr std::size_t kMaxFrontiers = 512;                   // live frontier points of the whole tree
 inline constexpr std::size_t kMaxLocalFrontiers = 3 * kMaxSectors;  // per scan: mid, left, right
-inline constexpr std::size_t kMaxKeepOuts = 4;                      // operator keep-out boxes
-
-// An operator-supplied region SRT-Star never sends the vehicle into or through, in the
-// navigation frame (m): a laser-only explorer cannot tell a glass window from a doorway (the
-// beams pass through), so, like paper 004's explorer, whose operator marks the nodes "south of
-// window" off limits, it is told. Axis-aligned; grown by the clearance when used.
-struct KeepOut {
-  float x_min = 0, y_min = 0, x_max = 0, y_max = 0;
-};
+// Operator keep-out boxes (core/keep_out.hpp): SRT-Star sends the vehicle into or through none,
+// grown by its clearance; the flight home's shortcut keeps out of them too (the composition
+// hands the mission the same boxes).
+using kestrel::KeepOut;
+using kestrel::kMaxKeepOuts;
 
 // How equation 3's sum over the n in-range beams is scaled. The paper sums plainly, so its
 // K_wf is a gain per beam and the field grows with the laser's resolution; kPerRadian weights

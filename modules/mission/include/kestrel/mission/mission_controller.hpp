@@ -18,16 +18,19 @@
 // at the end held 0.4 m off the corridor's wall beside the north-west door, its breadcrumbs
 // behind it, until the stall landed them 2.7 m from home). So on the way home, given the newest
 // scan, the mission leaves the trail for the breadcrumb nearest home (home itself first) to
-// which the scan shows a straight way clear by shortcut_clearance_m (straight_path_clear):
-// one such check a step, the breadcrumbs within the laser's reach examined in turn.
+// which the scan shows a straight way clear by shortcut_clearance_m (straight_path_clear) and
+// which enters no keep-out box: one such check a step, the breadcrumbs within the laser's reach
+// examined in turn.
 //
 // Bad input: an invalid or non-finite NavState counts towards the failsafe; a non-finite
 // explorer set-point becomes a hold (velocity zero, where the vehicle is). Time: the phase
 // timers run on the mission's own clock, which follows `now` but does not move when `now`
 // steps back and moves at most 1 s when it leaps ahead; the ramps move at most 0.1 s a step.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
+#include "kestrel/core/keep_out.hpp"
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/static_vector.hpp"
 #include "kestrel/core/status.hpp"
@@ -67,6 +70,11 @@ struct MissionParams {
   float breadcrumb_spacing_m = 0.4f;
   bool return_shortcut = true;         // leave the trail where the scan shows a way nearer home
   float shortcut_clearance_m = 0.45f;  // ... clear by this (the approach limiter stops at 0.4 m)
+  // ... and entering none of these boxes grown by that clearance: the laser sees through glass,
+  // the trail was flown. The composition sets them to the explorer's (iarc-arena's window: a
+  // UTM-30LX flight home cut through it where the estimate had drifted 0.8 m).
+  std::array<KeepOut, kMaxKeepOuts> keep_out{};
+  uint8_t keep_out_count = 0;
 };
 
 // What the explorer says at this guidance step.
@@ -88,6 +96,7 @@ class MissionController {
   GuidanceSetpoint step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer,
                         const LaserScan* scan = nullptr);
 
+  const MissionParams& params() const { return params_; }
   Phase phase() const { return phase_; }
   bool finished() const { return phase_ == Phase::kLanded; }
   // The flight home reached home (false while under way, and after landing short of it).

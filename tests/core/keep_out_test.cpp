@@ -1,0 +1,45 @@
+// An operator's keep-out box (keep_out.hpp): valid corners, and the segment test the explorer
+// and the flight home's shortcut keep out with.
+#include "kestrel/core/keep_out.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace kestrel {
+namespace {
+
+// iarc-arena's window as the README's sweeps give it: x 2..5, y 8.9..9.1.
+constexpr KeepOut kWindow{2.0f, 8.9f, 5.0f, 9.1f};
+
+TEST(KeepOut, ValidCornersAreFiniteAndInOrder) {
+  EXPECT_TRUE(kWindow.valid());
+  EXPECT_TRUE((KeepOut{1, 1, 1, 1}).valid());  // a point
+  EXPECT_FALSE((KeepOut{5, 8.9f, 2, 9.1f}).valid());
+  EXPECT_FALSE((KeepOut{2, 9.1f, 5, 8.9f}).valid());
+  EXPECT_FALSE((KeepOut{NAN, 8.9f, 5, 9.1f}).valid());
+  EXPECT_FALSE((KeepOut{2, 8.9f, INFINITY, 9.1f}).valid());
+}
+
+TEST(KeepOut, ASegmentCrossesTheBoxGrownByTheClearance) {
+  // Straight through the glass, and through its corner.
+  EXPECT_TRUE(kWindow.crossed_by({3, 8}, {3, 10}, 0.0f));
+  EXPECT_TRUE(kWindow.crossed_by({1.5f, 8.5f}, {2.5f, 9.5f}, 0.0f));
+  // Along the hallway 0.5 m south of it: clear, but not of a box grown by 0.45 m... nor 0.6 m.
+  EXPECT_FALSE(kWindow.crossed_by({1, 8.4f}, {6, 8.4f}, 0.0f));
+  EXPECT_FALSE(kWindow.crossed_by({1, 8.4f}, {6, 8.4f}, 0.45f));
+  EXPECT_TRUE(kWindow.crossed_by({1, 8.4f}, {6, 8.4f}, 0.6f));
+  // Ending short of it, starting inside it, and a segment that is a point.
+  EXPECT_FALSE(kWindow.crossed_by({3, 7}, {3, 8.8f}, 0.0f));
+  EXPECT_TRUE(kWindow.crossed_by({3, 9}, {3, 7}, 0.0f));
+  EXPECT_TRUE(kWindow.crossed_by({3, 9}, {3, 9}, 0.0f));
+  EXPECT_FALSE(kWindow.crossed_by({3, 7}, {3, 7}, 0.0f));
+  // Parallel to an axis, beside the box.
+  EXPECT_FALSE(kWindow.crossed_by({5.2f, 8}, {5.2f, 10}, 0.0f));
+  EXPECT_TRUE(kWindow.crossed_by({5.2f, 8}, {5.2f, 10}, 0.3f));
+  // A non-finite end crosses nothing (the callers refuse such points first).
+  EXPECT_FALSE(kWindow.crossed_by({NAN, 8}, {3, 10}, 0.0f));
+}
+
+}  // namespace
+}  // namespace kestrel
