@@ -1,29 +1,8 @@
 #pragma once
-// Synthetic scans for the compact SLAM's tests: a SegmentWorld's returns as ScanPoints, in the
-// sensor frame, as the scan matcher hands them over.
-#include <cmath>
-
-#include "kestrel/scan_matching/scan_points.hpp"
-#include "synthetic_world.hpp"
+// The compact SLAM's test worlds; their scans as ScanPoints come from synthetic_points.hpp.
+#include "synthetic_points.hpp"
 
 namespace kestrel::test {
-
-inline scan_matching::ScanPoints scan_points(const SegmentWorld& w, const LaserModel& m, const Pose2& sensor) {
-  const LaserScan s = w.scan(m, sensor.x, sensor.y, sensor.theta);
-  scan_matching::ScanPoints p;
-  p.angle_step_rad = std::fabs(s.angle_step_rad);
-  for (uint16_t i = 0; i < s.beam_count; ++i) {
-    const uint16_t r = s.range_mm[i];
-    if (!LaserScan::is_return(r) || r >= s.max_range_mm) continue;
-    const float a = s.angle_of(i);
-    p.x[p.count] = 1e-3f * r * std::cos(a);
-    p.y[p.count] = 1e-3f * r * std::sin(a);
-    p.range_mm[p.count] = r;
-    p.beam[p.count] = i;
-    ++p.count;
-  }
-  return p;
-}
 
 // An 8 x 6 m room with a pillar and an alcove: every direction constrained.
 inline SegmentWorld slam_room() {

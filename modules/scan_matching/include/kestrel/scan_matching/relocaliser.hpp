@@ -1,0 +1,117 @@
+#pragma once
+// Finds the vehicle again against a few remembered scans, over a window far wider than the
+// scan matcher's: where the estimate has drifted a metre or two from the frame the scans were
+// taken in, and nothing else the vehicle carries still holds that frame. The vehicle remembers
+// its take-off scan and a few from its first minute near home, when the estimate had not yet
+// drifted, and, flying home after a long exploration, asks where it stands relative to them
+// (autonomy_stack.hpp): the compact SLAM cannot tell, its corrections are held to half a metre
+// and its map near home has taken in the drift of every later pass. One scan is not enough: a
+// 240 degree laser at take-off never saw the wall behind it, which is what the vehicle sees
+// when it comes home facing the other way.
+//
+// The reference scans' contours (paper 000, 5.1.1) are drawn into a likelihood map of coarse
+// cells centred on the first one, and a scan is searched against it by the correlative
+// search's branch and bound (5.1.2) over +-window_m and +-window_rad around the caller's guess.
+// A fix is handed back only when three things hold:
+//   - the scan fits: its mean cell over the points the map can judge is min_score or more, on
+//     min_points points or more (4 m of laser seeing a wall the take-off scan did not see
+//     fits nothing, and is refused);
+//   - it fits clearly better than at the guess (min_gain): a flat optimum leaves the guess;
+//   - it is unambiguous: at the best rotation, no translation farther than exclusion_m from
+//     the best (up to ambiguity_m) scores max_second_ratio of it or more. Along a corridor,
+//     or between two alike doors, the search cannot tell which, and then it does not say.
+//
+// No heap: the map (0.6 MiB) and the search are inside the object, allocated once.
+#include <cstdint>
+
+#include "kestrel/core/se2.hpp"
+#include "kestrel/core/status.hpp"
+#include "kestrel/scan_matching/contour_extractor.hpp"
+#include "kestrel/scan_matching/correlative_search.hpp"
+#include "kestrel/scan_matching/likelihood_map.hpp"
+#include "kestrel/scan_matching/params.hpp"
+#include "kestrel/scan_matching/scan_points.hpp"
+
+namespace kestrel::scan_matching {
+
+// 640 cells of 4 cm: 25.6 m, so that a 4 m laser 4 m from the reference, searched +-3 m and
+// judged +-1 m farther for the second peak, keeps its points inside the map.
+inline constexpr int kRelocaliserMapDim = 640;
+inline constexpr std::size_t kMaxReferenceScans = 6;
+
+struct RelocaliserParams {
+  float resolution_m = 0.04f;    // map cell and translation step
+  float sigma_m = 0.04f;         // likelihood falls to 0 at 3 sigma from a contour
+  float angle_step_rad = 0.01f;  // 4 cm at 4 m
+  float window_m = 3.0f;         // translation half-window around the guess
+  float window_rad = 0.3f;       // rotation half-window
+  float min_score = 0.35f;       // mean cell / kCellMax of the best pose
+  uint16_t min_points = 60;      // points the map judges at the best pose
+  float min_gain = 0.2f;         // the best scores (1 + min_gain) x the guess's, or more
+  float exclusion_m = 0.5f;      // the second peak is sought beyond this from the best...
+  float ambiguity_m = 1.0f;      // ...and within this
+  // Over 40 views of a URG-04LX in a room (relocaliser_test.cpp) the true pose's second peak
+  // was 0.61-0.85 of it (a long wall still fits half a metre along), and every best pose a
+  // metre or more from the truth had one of 0.86 or more: the wall seen was all there was. The
+  // margin is thin, so the caller asks twice (autonomy_stack.hpp).
+  float max_second_ratio = 0.85f;
+};
+
+// kInvalidArgument: a value out of range, or a window the map and search cannot hold.
+Status validate(const RelocaliserParams& p);
+
+enum class RelocaliseOutcome : uint8_t {
+  kFixed,        // `pose` is where the scan was taken, in the reference's frame
+  kNoReference,  // add_reference() has not succeeded
+  kBadInput,     // guess not finite, or too far from the reference for the map
+  kNoFit,        // best pose under min_score or min_points
+  kNoGain,       // best pose not min_gain better than the guess
+  kAmbiguous,    // a second peak max_second_ratio as high
+};
+
+struct Relocalisation {
+  RelocaliseOutcome outcome = RelocaliseOutcome::kNoReference;
+  Pose2 pose;              // the fix when kFixed, otherwise the guess
+  float score = 0;         // best pose's mean cell / kCellMax
+  float guess_score = 0;   // the guess's
+  float second_ratio = 0;  // second peak / best
+  uint16_t points = 0;     // points judged at the best pose
+  bool fixed() const { return outcome == RelocaliseOutcome::kFixed; }
+};
+
+class Relocaliser {
+ public:
+  Relocaliser() : extractor_(Params{}) {}
+  Relocaliser(const Relocaliser&) = delete;
+  Relocaliser& operator=(const Relocaliser&) = delete;
+
+  // `matcher` supplies the contour joins and the laser's reach (the vehicle's scan matcher's);
+  // forgets the reference.
+  Status configure(const RelocaliserParams& p, const Params& matcher);
+  // Draws one more reference scan: its returns (sensor frame) and the sensor's pose when it was
+  // taken. The first centres the map. kInvalidArgument for a pose that is not finite,
+  // kNoData for fewer than min_points returns, kCapacityExceeded after kMaxReferenceScans.
+  Status add_reference(const ScanPoints& pts, const Pose2& pose);
+  // Where `pts` was taken, searched around `guess` (both in the reference's frame).
+  Relocalisation locate(const ScanPoints& pts, const Pose2& guess);
+
+  bool has_reference() const { return reference_count_ > 0; }
+  std::size_t reference_count() const { return reference_count_; }
+  const Pose2& reference_pose() const { return reference_pose_; }
+  const RelocaliserParams& params() const { return params_; }
+  const LikelihoodMap& map() const { return map_; }
+
+ private:
+  float second_peak_ratio(const GridPose& best);
+
+  RelocaliserParams params_;
+  Params matcher_;
+  LikelihoodMapStorage<kRelocaliserMapDim, kMaxPoints * kMaxReferenceScans> map_;
+  ContourExtractor extractor_;
+  Contours contours_;
+  CorrelativeSearch search_;
+  Pose2 reference_pose_;
+  std::size_t reference_count_ = 0;
+};
+
+}  // namespace kestrel::scan_matching
