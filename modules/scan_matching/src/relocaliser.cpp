@@ -13,10 +13,11 @@ Status validate(const RelocaliserParams& p) {
   if (!(p.resolution_m >= 0.01f && p.resolution_m <= 0.2f) || !(p.sigma_m > 0.0f) ||
       !(3.0f * p.sigma_m / p.resolution_m < 64.0f) || !(p.angle_step_rad > 0.0f && p.angle_step_rad <= 0.1f) ||
       !(p.window_m > 0.0f) || !(p.window_rad >= 0.0f && p.window_rad <= 1.0f) || !(p.min_score >= 0.0f && p.min_score <= 1.0f) ||
-      p.min_points < 3 || !(p.min_gain >= 0.0f) || !(p.exclusion_m > 0.0f) || !(p.ambiguity_m > p.exclusion_m) ||
-      !(p.max_second_ratio > 0.0f && p.max_second_ratio <= 1.0f))
+      p.min_points < 3 || !(p.min_gain >= 0.0f) || !(p.exclusion_m > 0.0f) || !(p.exclusion_m < p.window_m) ||
+      !(p.max_second_ratio > 0.0f && p.max_second_ratio <= 1.0f) || !(p.max_see_through >= 0.0f && p.max_see_through <= 1.0f) ||
+      !(p.see_through_margin_m >= 0.0f && p.see_through_margin_m <= 5.0f) || !(p.wall_level > 0.0f && p.wall_level <= 1.0f))
     return Status::kInvalidArgument;
-  if (cells(p.window_m, p.resolution_m) > kMaxWindowCells || cells(p.ambiguity_m, p.resolution_m) > kMaxExhaustiveWindow ||
+  if (cells(p.window_m, p.resolution_m) > kMaxExhaustiveWindow ||
       cells(p.window_rad, p.angle_step_rad) > kMaxThetaSteps)
     return Status::kInvalidArgument;
   return Status::kOk;
@@ -76,34 +77,79 @@ Status Relocaliser::add_reference(const ScanPoints& pts, const Pose2& pose) {
   return Status::kOk;
 }
 
-// The best score at the best rotation among translations between exclusion_m and ambiguity_m
-// of the best, over the best's: how sure the search is of where along the scene it stands.
+// The best score at the best rotation over the window's translations farther than
+// exclusion_m from the best, over the best's: how sure the search is of where in the scene it
+// stands.
 float Relocaliser::second_peak_ratio(const GridPose& best) {
-  const int half = cells(params_.ambiguity_m, params_.resolution_m);
+  const int half = search_.half_cells();
   const int excl = cells(params_.exclusion_m, params_.resolution_m);
-  const uint16_t* img = search_.slice(best.k, best.tx, best.ty, half);
+  const uint16_t* img = search_.slice(best.k, 0, 0, half);
   const int w = 2 * half + 1;
   int32_t second = 0;
   for (int y = -half; y <= half; ++y) {
     for (int x = -half; x <= half; ++x) {
-      if (x * x + y * y <= excl * excl || x * x + y * y > half * half) continue;
+      const int dx = x - best.tx, dy = y - best.ty;
+      if (dx * dx + dy * dy <= excl * excl) continue;
       second = std::max<int32_t>(second, img[static_cast<std::size_t>((y + half) * w + (x + half))]);
     }
   }
   return best.score > 0 ? static_cast<float>(second) / static_cast<float>(best.score) : 1.0f;
 }
 
-Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess) {
+// Whether the ray from the pose at `angle` (world frame) meets a cell the reference drew as
+// wall within reach_m: walked cell by cell, about 100 lookups for 4 m.
+bool Relocaliser::passes_a_wall(const Pose2& pose, float angle, float reach_m) const {
+  const float inv = 1.0f / map_.resolution_m();
+  const float reach = reach_m * inv;
+  const auto wall = static_cast<uint8_t>(std::ceil(params_.wall_level * static_cast<float>(kCellMax)));
+  const float ox = (pose.x - map_.origin_x_m()) * inv, oy = (pose.y - map_.origin_y_m()) * inv;
+  const float dx = std::cos(angle), dy = std::sin(angle);
+  for (float k = 1.0f; k <= reach; k += 1.0f) {
+    if (map_.at(static_cast<int>(std::floor(ox + k * dx)), static_cast<int>(std::floor(oy + k * dy))) >= wall) return true;
+  }
+  return false;
+}
+
+// Of the beams walked (returns longer than the margin and, with the raw scan, beams that found
+// nothing), the share that pass a reference wall.
+float Relocaliser::see_through_fraction(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) const {
+  const float margin = params_.see_through_margin_m;
+  int walked = 0, through = 0;
+  const auto walk = [&](float angle, float reach) {
+    if (!(reach > map_.resolution_m())) return;
+    ++walked;
+    if (passes_a_wall(pose, angle, reach)) ++through;
+  };
+  if (scan != nullptr && !(std::isfinite(scan->first_angle_rad) && std::isfinite(scan->angle_step_rad))) scan = nullptr;
+  if (scan != nullptr) {
+    const uint16_t n = std::min<uint16_t>(scan->beam_count, static_cast<uint16_t>(kMaxBeams));
+    const float reach = 1e-3f * static_cast<float>(scan->max_range_mm) - margin;
+    for (uint16_t i = 0; i < n; ++i) {
+      const uint16_t r = scan->range_mm[i];
+      const float a = pose.theta + scan->angle_of(i);
+      if (LaserScan::is_return(r) && r < scan->max_range_mm) {
+        walk(a, 1e-3f * static_cast<float>(r) - margin);
+      } else if (r == range_code::kNoReturn) {
+        walk(a, reach);
+      }
+    }
+  } else {
+    for (uint16_t i = 0; i < pts.count; ++i)
+      walk(pose.theta + std::atan2(pts.y[i], pts.x[i]), std::hypot(pts.x[i], pts.y[i]) - margin);
+  }
+  return walked > 0 ? static_cast<float>(through) / static_cast<float>(walked) : 0.0f;
+}
+
+Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess, const LaserScan* scan) {
   Relocalisation r;
   r.pose = guess;
   if (reference_count_ == 0) return r;
   r.outcome = RelocaliseOutcome::kBadInput;
   const int half_cells = cells(params_.window_m, params_.resolution_m);
   const int half_steps = cells(params_.window_rad, params_.angle_step_rad);
-  const int slice_half = cells(params_.ambiguity_m, params_.resolution_m);
   if (!guess.finite() || std::hypot(guess.x - reference_pose_.x, guess.y - reference_pose_.y) > 0.5f * map_.dim() * map_.resolution_m())
     return r;
-  if (search_.setup(pts, guess, map_, half_cells, half_steps, params_.angle_step_rad, slice_half, matcher_.max_range_m) != Status::kOk)
+  if (search_.setup(pts, guess, map_, half_cells, half_steps, params_.angle_step_rad, 0, matcher_.max_range_m) != Status::kOk)
     return r;
   const GridPose best = search_.branch_and_bound();
   const int judged = best.score >= 0 ? search_.scored_points(best.k) : 0;
@@ -125,7 +171,13 @@ Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess) {
     r.outcome = RelocaliseOutcome::kAmbiguous;
     return r;
   }
-  r.pose = search_.pose_of(static_cast<float>(best.k), static_cast<float>(best.tx), static_cast<float>(best.ty));
+  const Pose2 found = search_.pose_of(static_cast<float>(best.k), static_cast<float>(best.tx), static_cast<float>(best.ty));
+  r.see_through = see_through_fraction(pts, scan, found);
+  if (r.see_through > params_.max_see_through) {
+    r.outcome = RelocaliseOutcome::kSeesThrough;
+    return r;
+  }
+  r.pose = found;
   r.outcome = RelocaliseOutcome::kFixed;
   return r;
 }

@@ -17,13 +17,24 @@
 //     min_points points or more (4 m of laser seeing a wall the take-off scan did not see
 //     fits nothing, and is refused);
 //   - it fits clearly better than at the guess (min_gain): a flat optimum leaves the guess;
-//   - it is unambiguous: at the best rotation, no translation farther than exclusion_m from
-//     the best (up to ambiguity_m) scores max_second_ratio of it or more. Along a corridor,
-//     or between two alike doors, the search cannot tell which, and then it does not say.
+//   - it is unambiguous: at the best rotation, no translation of the window farther than
+//     exclusion_m from the best scores max_second_ratio of it or more. Along a corridor, or
+//     facing a plain wall, or between two alike doors, the search cannot tell which, and then
+//     it does not say. The whole window is scored at that rotation (image addition), so its
+//     half-width is held to kMaxExhaustiveWindow cells: 2.56 m at 4 cm;
+//   - it does not see through the reference's walls: placed at the best pose, at most
+//     max_see_through of the scan's beams pass a wall the reference drew (a cell of
+//     wall_level or more) short of their return by see_through_margin_m, or, for a beam that
+//     found nothing within the laser's reach (range_code::kNoReturn), short of that reach. The
+//     likelihood rewards returns on walls and is blind to rays through them: from a room beside
+//     home, one metre past the corridor's wall, a scan fits the corridor 2 m away as well as
+//     where it was taken, save that the room's open side, where the laser found nothing,
+//     lies beyond the corridor's far wall. Without the raw scan, only returns are walked.
 //
 // No heap: the map (0.6 MiB) and the search are inside the object, allocated once.
 #include <cstdint>
 
+#include "kestrel/core/messages.hpp"
 #include "kestrel/core/se2.hpp"
 #include "kestrel/core/status.hpp"
 #include "kestrel/scan_matching/contour_extractor.hpp"
@@ -34,8 +45,8 @@
 
 namespace kestrel::scan_matching {
 
-// 640 cells of 4 cm: 25.6 m, so that a 4 m laser 4 m from the reference, searched +-3 m and
-// judged +-1 m farther for the second peak, keeps its points inside the map.
+// 640 cells of 4 cm: 25.6 m, so that a 4 m laser 4 m from the reference, searched +-2.5 m,
+// keeps its points inside the map.
 inline constexpr int kRelocaliserMapDim = 640;
 inline constexpr std::size_t kMaxReferenceScans = 6;
 
@@ -43,18 +54,16 @@ struct RelocaliserParams {
   float resolution_m = 0.04f;    // map cell and translation step
   float sigma_m = 0.04f;         // likelihood falls to 0 at 3 sigma from a contour
   float angle_step_rad = 0.01f;  // 4 cm at 4 m
-  float window_m = 3.0f;         // translation half-window around the guess
+  float window_m = 2.5f;         // translation half-window around the guess
   float window_rad = 0.3f;       // rotation half-window
   float min_score = 0.35f;       // mean cell / kCellMax of the best pose
   uint16_t min_points = 60;      // points the map judges at the best pose
   float min_gain = 0.2f;         // the best scores (1 + min_gain) x the guess's, or more
-  float exclusion_m = 0.5f;      // the second peak is sought beyond this from the best...
-  float ambiguity_m = 1.0f;      // ...and within this
-  // Over 40 views of a URG-04LX in a room (relocaliser_test.cpp) the true pose's second peak
-  // was 0.61-0.85 of it (a long wall still fits half a metre along), and every best pose a
-  // metre or more from the truth had one of 0.86 or more: the wall seen was all there was. The
-  // margin is thin, so the caller asks twice (autonomy_stack.hpp).
+  float exclusion_m = 0.5f;      // the second peak is sought beyond this from the best
   float max_second_ratio = 0.85f;
+  float max_see_through = 0.05f;     // beams through a reference wall, of those judged
+  float see_through_margin_m = 0.3f; // a beam is walked to this short of its return
+  float wall_level = 0.75f;          // a cell this much of kCellMax is on a wall (1 sigma)
 };
 
 // kInvalidArgument: a value out of range, or a window the map and search cannot hold.
@@ -67,6 +76,7 @@ enum class RelocaliseOutcome : uint8_t {
   kNoFit,        // best pose under min_score or min_points
   kNoGain,       // best pose not min_gain better than the guess
   kAmbiguous,    // a second peak max_second_ratio as high
+  kSeesThrough,  // at the best pose, beams pass through the reference's walls
 };
 
 struct Relocalisation {
@@ -75,6 +85,7 @@ struct Relocalisation {
   float score = 0;         // best pose's mean cell / kCellMax
   float guess_score = 0;   // the guess's
   float second_ratio = 0;  // second peak / best
+  float see_through = 0;   // beams through a reference wall at the best pose, of those judged
   uint16_t points = 0;     // points judged at the best pose
   bool fixed() const { return outcome == RelocaliseOutcome::kFixed; }
 };
@@ -92,8 +103,10 @@ class Relocaliser {
   // taken. The first centres the map. kInvalidArgument for a pose that is not finite,
   // kNoData for fewer than min_points returns, kCapacityExceeded after kMaxReferenceScans.
   Status add_reference(const ScanPoints& pts, const Pose2& pose);
-  // Where `pts` was taken, searched around `guess` (both in the reference's frame).
-  Relocalisation locate(const ScanPoints& pts, const Pose2& guess);
+  // Where `pts` was taken, searched around `guess` (both in the reference's frame). `scan`,
+  // the laser scan the points came from (optional), lets the beams that found nothing be
+  // walked for the see-through check too.
+  Relocalisation locate(const ScanPoints& pts, const Pose2& guess, const LaserScan* scan = nullptr);
 
   bool has_reference() const { return reference_count_ > 0; }
   std::size_t reference_count() const { return reference_count_; }
@@ -103,6 +116,8 @@ class Relocaliser {
 
  private:
   float second_peak_ratio(const GridPose& best);
+  float see_through_fraction(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) const;
+  bool passes_a_wall(const Pose2& pose, float angle, float reach_m) const;
 
   RelocaliserParams params_;
   Params matcher_;
