@@ -476,9 +476,83 @@ TEST(MissionController, NonFiniteExplorerSetpointBecomesAHold) {
   }
 }
 
+// GIVEN an explore mission with a take-off survey turn WHEN it reaches altitude THEN it turns
+// on the spot by that much, no faster than the return yaw rate, before it explores; a hover
+// mission does not turn.
+TEST(MissionController, TheTakeOffSurveyTurnsOnTheSpotBeforeExploring) {
+  MissionRun r;
+  MissionParams p;
+  p.takeoff_survey_rad = 2.0f * kPi<float>;
+  ASSERT_EQ(r.mc.configure(MissionKind::kExplore, p), Status::kOk);
+  ExplorerOutput e;
+  e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
+  e.setpoint.velocity_mps = {0.5f, 0, 0};
+  float heading = 0, turned = 0;
+  float explore_at = -1;
+  for (int i = 0; i < 2000 && explore_at < 0; ++i) {
+    const GuidanceSetpoint s = r.step(&e);
+    if (r.mc.phase() == Phase::kExplore) {
+      explore_at = static_cast<float>(i) * MissionRun::kDt;
+      break;
+    }
+    const float d = angle_diff(s.heading_rad, heading);
+    EXPECT_LE(std::fabs(d), p.return_yaw_rate_radps * MissionRun::kDt + 1e-4f);
+    EXPECT_GE(d, -1e-5f);  // one way round
+    turned += d;
+    heading = s.heading_rad;
+    if (r.mc.phase() == Phase::kTakeoff && turned > 0.01f) {
+      // Turning at altitude, where it took off.
+      EXPECT_NEAR(r.v.nav.position_m.x(), 1.0f, 0.16f);
+      EXPECT_NEAR(r.v.nav.position_m.y(), 2.0f, 0.16f);
+    }
+  }
+  EXPECT_NEAR(turned, 2.0f * kPi<float>, 1e-3f);
+  // Preflight, climb, then 2 pi at 0.5 rad/s: 12.6 s of turning.
+  EXPECT_GT(explore_at, 2.0f + 12.5f);
+  EXPECT_LT(explore_at, 2.0f + 12.6f + 6.0f);
+
+  MissionRun hover;
+  ASSERT_EQ(hover.mc.configure(MissionKind::kHover, p), Status::kOk);
+  for (int i = 0; i < 400; ++i) EXPECT_EQ(hover.step().heading_rad, 0.0f);
+}
+
+// GIVEN an explore mission with a home survey WHEN it is home by its estimate THEN it turns on
+// the spot at altitude by that much (the home re-localisation looks meanwhile), then descends.
+TEST(MissionController, HomeAgainItTurnsOnTheSpotBeforeDescending) {
+  MissionRun r;
+  MissionParams p;
+  p.home_survey_rad = kPi<float>;
+  ExplorerOutput e;
+  ASSERT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 80}}));
+  ASSERT_TRUE(r.run_until(Phase::kLand, 30, &e));
+  ASSERT_TRUE(r.mc.returned_home());
+  float heading = r.step(&e).heading_rad, turned = 0;
+  int steps = 1;
+  for (;; ++steps) {
+    const GuidanceSetpoint s = r.step(&e);
+    if (s.position_m.z() < p.takeoff_altitude_m) break;
+    turned += angle_diff(s.heading_rad, heading);
+    EXPECT_LE(std::fabs(angle_diff(s.heading_rad, heading)), p.return_yaw_rate_radps * MissionRun::kDt + 1e-4f);
+    heading = s.heading_rad;
+    ASSERT_LT(steps, 1000);
+  }
+  EXPECT_NEAR(turned, kPi<float>, 0.03f);
+  // pi at 0.5 rad/s: 6.3 s at altitude.
+  EXPECT_NEAR(static_cast<float>(steps) * MissionRun::kDt, kPi<float> / p.return_yaw_rate_radps, 0.1f);
+  EXPECT_TRUE(r.run_until(Phase::kLanded, 10, &e));
+}
+
 TEST(MissionController, RejectsBadConfiguration) {
   MissionController mc;
   MissionParams p;
+  p.takeoff_survey_rad = -1.0f;
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p.takeoff_survey_rad = std::nanf("");
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p.takeoff_survey_rad = 0;
+  p.home_survey_rad = -1.0f;
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p = MissionParams{};
   p.takeoff_altitude_m = std::nanf("");
   EXPECT_EQ(mc.configure(MissionKind::kHover, p), Status::kInvalidArgument);
   p = MissionParams{};

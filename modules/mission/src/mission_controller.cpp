@@ -54,6 +54,8 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
       !positive_finite(p.return_speed_mps) || !positive_finite(p.breadcrumb_spacing_m) ||
       !positive_finite(p.return_yaw_rate_radps) || !positive_finite(p.return_stall_s) ||
       !positive_finite(p.shortcut_clearance_m) ||
+      !(std::isfinite(p.home_survey_rad) && p.home_survey_rad >= 0 && p.home_survey_rad <= 4.0f * kPi<float>) ||
+      !(std::isfinite(p.takeoff_survey_rad) && p.takeoff_survey_rad >= 0 && p.takeoff_survey_rad <= 4.0f * kPi<float>) ||
       !(std::isfinite(p.hover_duration_s) && p.hover_duration_s >= 0) ||
       !(std::isfinite(p.preflight_s) && p.preflight_s >= 0) ||
       !(std::isfinite(p.explore_time_limit_s) && p.explore_time_limit_s >= 0) ||
@@ -146,12 +148,18 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       home_ = nav.position_m;
       hold_point_ = {home_.x(), home_.y(), alt};
       hold_heading_ = nav.heading_rad;
+      survey_left_rad_ = params_.takeoff_survey_rad;
       ramp_z_ = nav.position_m.z();
       enter(Phase::kTakeoff, t);
       [[fallthrough]];
     case Phase::kTakeoff: {
       ramp_z_ = std::min(alt, ramp_z_ + params_.climb_rate_mps * dt);
-      if (ramp_z_ >= alt && arrived(nav, hold_point_)) {
+      const bool at_altitude = ramp_z_ >= alt && arrived(nav, hold_point_);
+      if (at_altitude && kind_ == MissionKind::kExplore && survey_left_rad_ > 0) {
+        const float turn = std::min(survey_left_rad_, params_.return_yaw_rate_radps * dt);
+        hold_heading_ = wrap_angle(hold_heading_ + turn);
+        survey_left_rad_ -= turn;
+      } else if (at_altitude) {
         if (kind_ == MissionKind::kHover) {
           enter(Phase::kHover, t);
         } else if (kind_ == MissionKind::kWaypoints) {
@@ -239,6 +247,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         hold_point_ = {home_.x(), home_.y(), alt};
         ramp_z_ = alt;
         returned_home_ = true;
+        survey_left_rad_ = kind_ == MissionKind::kExplore ? params_.home_survey_rad : 0.0f;
         enter(Phase::kLand, t);
         return hold(now, hold_point_, hold_heading_);
       }
@@ -277,7 +286,13 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       return s;
     }
     case Phase::kLand: {
-      ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);  // aim below the floor to settle
+      if (returned_home_ && survey_left_rad_ > 0) {
+        const float turn = std::min(survey_left_rad_, params_.return_yaw_rate_radps * dt);
+        hold_heading_ = wrap_angle(hold_heading_ + turn);
+        survey_left_rad_ -= turn;
+      } else {
+        ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);  // aim below the floor to settle
+      }
       if (nav.position_m.z() < params_.landed_altitude_m && std::fabs(nav.velocity_mps.z()) < 0.2f)
         enter(Phase::kLanded, t);
       GuidanceSetpoint s = hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);

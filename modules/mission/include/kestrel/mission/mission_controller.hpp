@@ -66,6 +66,15 @@ struct MissionParams {
   float explore_time_limit_s = 600.0f; // explore phase ends after this, frontiers or not
   float return_speed_mps = 0.6f;       // cruise speed along the breadcrumb trail
   float return_yaw_rate_radps = 0.5f;  // heading turns towards the way home at most this fast
+  // Explore missions: at altitude, before exploring, turn on the spot this much (at
+  // return_yaw_rate_radps), so that the laser has looked all round home. 0: no turn. The
+  // composition sets it for the home re-localisation (autonomy/home_fix.hpp): a 240 degree
+  // laser taking off facing east never sees the wall west of home, where flights come back.
+  float takeoff_survey_rad = 0.0f;
+  // Explore missions: home again by the estimate, turn on the spot this much at altitude
+  // before descending, so that the home re-localisation looks all round from where the
+  // vehicle believes home is. 0: descend at once.
+  float home_survey_rad = 0.0f;
   float return_stall_s = 30.0f;        // no progress home for this long: land where it is
   float breadcrumb_spacing_m = 0.4f;
   bool return_shortcut = true;         // leave the trail where the scan shows a way nearer home
@@ -142,6 +151,7 @@ class MissionController {
   Eigen::Vector3f home_ = Eigen::Vector3f::Zero();
   Eigen::Vector3f hold_point_ = Eigen::Vector3f::Zero();
   float hold_heading_ = 0;
+  float survey_left_rad_ = 0;  // of the take-off or the home survey turn
   float ramp_z_ = 0;
   std::size_t waypoint_index_ = 0;
   TimeUs arrived_at_;
