@@ -285,6 +285,7 @@ TEST_F(AutonomyStackTest, ConfigureRefusesEachBadSubConfigurationNamesItAndStart
        "mission parameters or waypoints"},
       {"waypoints: none", [](StackConfig& c) { c.mission_kind = mission::MissionKind::kWaypoints; },
        "mission parameters or waypoints"},
+      {"home fix radius NaN", [](StackConfig& c) { c.home_fix.radius_m = kNaN; }, "home re-localisation parameters"},
   };
   for (const Case& k : cases) {
     StackConfig c = Rig::config();

@@ -138,6 +138,13 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_FALSE(home.stack.mission.return_shortcut);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"return_shortcut", "no"}}}, home),
             "return_shortcut: expected on or off, got 'no'");
+  // Home re-localisation, on by default.
+  FlightOptions fix;
+  EXPECT_TRUE(fix.stack.home_fix.enabled);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"home_fix", "off"}}}, fix), "");
+  EXPECT_FALSE(fix.stack.home_fix.enabled);
+  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"home_fix", "1"}}}, fix),
+            "home_fix: expected on or off, got '1'");
   // What the retrace counts, and what ends it.
   FlightOptions target;
   EXPECT_EQ(target.stack.explorer.srt.retrace_target, exploration::RetraceTarget::kUnflown);

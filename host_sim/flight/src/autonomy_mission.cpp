@@ -208,6 +208,9 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       out.stack.explorer.srt.retrace_target = t.value();
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
+    } else if (key == "home_fix" && kind == mission::MissionKind::kExplore) {
+      if (value != "on" && value != "off") return "home_fix: expected on or off, got '" + value + "'";
+      out.stack.home_fix.enabled = value == "on";
     } else if (key == "return_shortcut" && kind == mission::MissionKind::kExplore) {
       if (value != "on" && value != "off") return "return_shortcut: expected on or off, got '" + value + "'";
       out.stack.mission.return_shortcut = value == "on";
@@ -440,6 +443,19 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
   out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);
   out.emplace_back("return_shortcuts", stack_->mission().shortcuts());
+  // Home re-localisation (home_fix.hpp): reference scans drawn, scans searched on the way home,
+  // fixes found, confirmed by the next search, and applied (or refused) by the filter.
+  const autonomy::HomeFixCounters& hf = stack_->home_fix().counters();
+  out.emplace_back("home_fix_references", hf.references);
+  out.emplace_back("home_fix_searches", hf.searches);
+  out.emplace_back("home_fix_found", hf.found);
+  out.emplace_back("home_fix_no_fit", hf.no_fit);
+  out.emplace_back("home_fix_no_gain", hf.no_gain);
+  out.emplace_back("home_fix_ambiguous", hf.ambiguous);
+  out.emplace_back("home_fix_sees_through", hf.sees_through);
+  out.emplace_back("home_fix_confirmed", hf.confirmed);
+  out.emplace_back("home_fixes", c.home_fixes);
+  out.emplace_back("home_fixes_refused", c.home_fixes_refused);
   // When each phase began (its first time): an explore phase that ended well before
   // explore_s ran out of frontiers.
   for (std::size_t i = 0; i < phase_start_s_.size(); ++i) {

@@ -40,11 +40,21 @@ Status AutonomyStack::configure(const StackConfig& c) {
     configure_error_ = "sensor timeouts";
     return Status::kInvalidArgument;
   }
+  if (home_fix_.configure(c.home_fix, c.matcher) != Status::kOk) {
+    configure_error_ = "home re-localisation parameters";
+    return Status::kInvalidArgument;
+  }
+  slam_frame_ = {};
   watchdog_.configure(c.sensor_timeouts);
   // The operator's keep-out boxes are the explorer's; the flight home keeps out of them too.
   mission::MissionParams mp = c.mission;
   mp.keep_out = c.explorer.srt.keep_out;
   mp.keep_out_count = c.explorer.srt.keep_out_count;
+  // The home re-localisation's reference scans look all round home (home_fix.hpp).
+  if (c.home_fix.enabled) {
+    mp.takeoff_survey_rad = c.home_fix.survey_rad;
+    mp.home_survey_rad = c.home_fix.home_survey_rad;
+  }
   if (mission_.configure(c.mission_kind, mp, &c.waypoints) != Status::kOk) {
     configure_error_ = "mission parameters or waypoints";
     return Status::kInvalidArgument;
@@ -96,13 +106,14 @@ void AutonomyStack::background_step() {
   if (matcher_.local_map().rebuild() == Status::kOk) map_rebuilds_.fetch_add(1, std::memory_order_relaxed);
   // explorer_ is set by configure(), before the loop and this thread start.
   if (explorer_ != nullptr) explorer_->background_step();
+  home_fix_.background_step();
   // A correction not yet taken holds the next scan back: the filter applies them in order.
   if (!slam_in_full_.load(std::memory_order_acquire) || slam_out_ready_.load(std::memory_order_acquire)) return;
   const slam::SlamResult r = slam_.process(slam_in_.points, slam_in_.prior);
   if (r.corrected()) {  // counted by the SLAM (slam().counters()); the filter counts its refusals
     slam_out_ = {};
     slam_out_.stamp = slam_in_.stamp;
-    slam_out_.pose = r.pose;
+    slam_out_.pose = slam_in_.frame.compose(r.pose);
     slam_out_ready_.store(true, std::memory_order_release);
   }
   slam_in_full_.store(false, std::memory_order_release);
@@ -126,11 +137,38 @@ void AutonomyStack::offer_scan_to_slam() {
   scan_matching::PosePrior at_scan;
   if (!scan_prior_from_nav(nav_, scan_.stamp, at_scan)) return;
   slam_in_.points = matcher_.scan_points();
-  slam_in_.prior = at_scan.pose;
+  slam_in_.prior = slam_frame_.inverse().compose(at_scan.pose);
   slam_in_.stamp = scan_.stamp;
+  slam_in_.frame = slam_frame_;
   last_slam_offer_ = scan_.stamp;
   slam_offered_ = true;
   slam_in_full_.store(true, std::memory_order_release);
+}
+
+void AutonomyStack::offer_scan_to_home_fix() {
+  // Only scans the matcher fitted: a lost one's pose is the filter's prediction.
+  if ((last_match_.measurement.flags & scan_matching::match_flag::kLost) != 0) return;
+  scan_matching::PosePrior at_scan;
+  if (!scan_prior_from_nav(nav_, scan_.stamp, at_scan)) return;
+  const mission::Phase phase = mission_.phase();
+  const bool homing = phase == mission::Phase::kReturn || (phase == mission::Phase::kLand && mission_.returned_home());
+  const bool at_altitude = (phase == mission::Phase::kTakeoff || phase == mission::Phase::kExplore) &&
+                           nav_.position_m.z() >= 0.8f * mission_.params().takeoff_altitude_m;
+  home_fix_.offer(matcher_.scan_points(), scan_, at_scan.pose, homing, at_altitude);
+}
+
+void AutonomyStack::take_home_fix() {
+  PoseMeasurement2 fix;
+  if (!home_fix_.take(fix)) return;
+  const Pose2 before = filter_.frame_correction();
+  if (filter_.apply_correction(fix) != Status::kOk) {
+    ++counters_.home_fixes_refused;
+    return;
+  }
+  ++counters_.home_fixes;
+  // The frame moved by after * before^-1; the SLAM's map did not.
+  slam_frame_ = filter_.frame_correction().compose(before.inverse()).compose(slam_frame_);
+  nav_ = filter_.state();
 }
 
 void AutonomyStack::run_imu(void* self, TimeUs release) { static_cast<AutonomyStack*>(self)->imu_task(release); }
@@ -191,6 +229,7 @@ void AutonomyStack::scan_task(TimeUs now) {
   // turn or a lost match, where the matcher's own constant-velocity guess would not. Its
   // uncertainty sizes the window: what the filter has not already accounted for.
   if (config_.slam_enabled) take_slam_correction();
+  take_home_fix();
   scan_matching::PosePrior prior;
   const scan_matching::PosePrior* prior_ptr = scan_prior_from_nav(nav_, scan_.stamp, prior) ? &prior : nullptr;
   // The filter's frame has moved by the SLAM's corrections; the matcher's map has not.
@@ -216,6 +255,7 @@ void AutonomyStack::scan_task(TimeUs now) {
   if (mission_.at_rest() && !armed_) (void)filter_.update_at_rest(scan_.stamp, config_.ekf.at_rest_var);
   nav_ = filter_.state();
   if (config_.slam_enabled) offer_scan_to_slam();
+  offer_scan_to_home_fix();
   guidance_scan_ = scan_;
   guidance_scan_fresh_ = true;
 }

@@ -16,6 +16,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "kestrel/autonomy/home_fix.hpp"
 #include "kestrel/autonomy/return_velocity_bound.hpp"
 #include "kestrel/autonomy/scan_prior.hpp"
 #include "kestrel/autonomy/stack_config.hpp"
@@ -66,6 +67,8 @@ struct StackCounters {
   uint32_t scans_lost = 0;           // matched nothing: the pose is the filter's prediction
   uint32_t map_restarts = 0;         // lost too long: the local map started again
   uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
+  uint32_t home_fixes = 0;           // home re-localisations the filter applied
+  uint32_t home_fixes_refused = 0;   // ...and refused
 };
 
 class AutonomyStack {
@@ -99,6 +102,8 @@ class AutonomyStack {
   const estimation::NavFilter& filter() const { return filter_; }
   const scan_matching::ScanMatcher& matcher() const { return matcher_; }
   const slam::CompactSlam& slam() const { return slam_; }
+  // Level 3's counts of the home re-localisation; the loop's are in counters().
+  const HomeFix& home_fix() const { return home_fix_; }
   const Scheduler& scheduler() const { return scheduler_; }
   const StackCounters& counters() const { return counters_; }
   // Local-map rebuilds done by background_step(): level 3's count, readable from the loop's thread.
@@ -118,6 +123,8 @@ class AutonomyStack {
   void control_task(TimeUs now);
   void take_slam_correction();
   void offer_scan_to_slam();
+  void offer_scan_to_home_fix();
+  void take_home_fix();
 
   Devices dev_;
   StackConfig config_;
@@ -144,8 +151,9 @@ class AutonomyStack {
   // and clears it when done; the same for the correction the other way.
   struct SlamInput {
     scan_matching::ScanPoints points;
-    Pose2 prior;
+    Pose2 prior;   // in the SLAM's frame
     TimeUs stamp;
+    Pose2 frame;   // slam_frame_ when offered: the correction goes back through it
   };
   SlamInput slam_in_;
   std::atomic<bool> slam_in_full_{false};
@@ -153,6 +161,10 @@ class AutonomyStack {
   std::atomic<bool> slam_out_ready_{false};
   TimeUs last_slam_offer_;
   bool slam_offered_ = false;
+  // The home re-localisation moves the filter's frame and leaves the SLAM's map where it was
+  // drawn: filter = slam_frame_ * SLAM. Written by the loop only.
+  Pose2 slam_frame_;
+  HomeFix home_fix_;
 
   LaserScan scan_;             // the scan being matched
   LaserScan guidance_scan_;    // the newest matched scan, for the explorer

@@ -1,6 +1,7 @@
 #pragma once
 // Everything the autonomy stack is configured with, one struct per module (each with its
 // defaults and units inline in its own header), plus what ties them together.
+#include "kestrel/autonomy/home_fix.hpp"
 #include "kestrel/autonomy/sensor_watchdog.hpp"
 #include "kestrel/control/controller_params.hpp"
 #include "kestrel/core/se2.hpp"
@@ -108,6 +109,8 @@ struct StackConfig {
   // How long the IMU or the laser may stay silent before the mission is told the estimate is
   // stale (and its failsafe lands the vehicle): sensor_watchdog.hpp.
   SensorTimeouts sensor_timeouts;
+  // Home re-localisation against the scans of the first minute, on the way home (home_fix.hpp).
+  HomeFixConfig home_fix;
 };
 
 }  // namespace kestrel::autonomy
