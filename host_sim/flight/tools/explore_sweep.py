@@ -157,8 +157,8 @@ def main():
     print("| world | laser | explorer | runs | all rooms entered | collision-free | "
           "all rooms and collision-free | finished | median all rooms at | "
           "best all rooms at, collision-free | mean coverage | median t90 s | landed at home | "
-          "mean position error m | mean velocity error m/s | estimate runaways per flight hour |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "landed within 0.5 m of take-off | mean position error m | mean velocity error m/s | estimate runaways per flight hour |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     groups = {}
     for (w, l, e, s), m in results:
         groups.setdefault((w, l, e), []).append(m)
@@ -166,7 +166,7 @@ def main():
         ms = [m for m in ms if m is not None]
         n = len(ms)
         if n == 0:
-            print(f"| {w} | {l} | {e} | 0 | | | | | | | | | | | | |")
+            print(f"| {w} | {l} | {e} | 0 | | | | | | | | | | | | | |")
             continue
         all_rooms = [m for m in ms if m.get("rooms_entered") == m.get("rooms_total")]
         t_all = [m["t_all_rooms_s"] for m in ms if m.get("t_all_rooms_s") is not None]
@@ -177,6 +177,10 @@ def main():
         fin = sum(1 for m in ms if m.get("mission_finished"))
         cov = statistics.mean(m.get("coverage", 0.0) for m in ms)
         home = sum(1 for m in ms if m.get("returned_home"))
+        # By the truth (returned_home is by the estimate): landed, and within 0.5 m of where it
+        # took off. '-' when a kept run predates final_from_start_m.
+        near = (str(sum(1 for m in ms if m.get("mission_finished") and m["final_from_start_m"] <= 0.5)) + f"/{n}"
+                if all(m.get("final_from_start_m") is not None for m in ms) else "-")
         pos = [m["pos_err_mean_m"] for m in ms if m.get("pos_err_mean_m") is not None]
         vel = [m["vel_err_mean_mps"] for m in ms if m.get("vel_err_mean_mps") is not None]
         # Runaways (1 m of error within 10 s, metrics.json) per hour simulated: steadier than
@@ -190,7 +194,7 @@ def main():
         print(f"| {w} | {l} | {e} | {n} | {len(all_rooms)}/{n} | {free}/{n} | {len(clean)}/{n} | {fin}/{n} | "
               f"{mmss(statistics.median(t_all)) if t_all else '-'} | {mmss(min(t_clean)) if t_clean else '-'} | "
               f"{fmt(cov, 1, True)} | "
-              f"{fmt(statistics.median(t90)) if t90 else '-'} | {home}/{n} | "
+              f"{fmt(statistics.median(t90)) if t90 else '-'} | {home}/{n} | {near} | "
               f"{fmt(statistics.mean(pos), 2) if pos else '-'} | {fmt(statistics.mean(vel), 3) if vel else '-'} | "
               f"{fmt(sum(r for r, _ in ran) / hours, 2) if hours > 0 else '-'} |")
     print()
