@@ -542,6 +542,36 @@ TEST(MissionController, HomeAgainItTurnsOnTheSpotBeforeDescending) {
   EXPECT_TRUE(r.run_until(Phase::kLanded, 10, &e));
 }
 
+// GIVEN an explore mission turning over home WHEN a fix of the estimate moves home 1.5 m off
+// THEN it flies home again (the flight home: velocity set-points, facing the way) and lands
+// there without a second turn.
+TEST(MissionController, AFixThatMovesHomeAwayReopensTheFlightHome) {
+  MissionRun r;
+  MissionParams p;
+  p.home_survey_rad = 2.0f * kPi<float>;
+  ExplorerOutput e;
+  ASSERT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 80}}));
+  ASSERT_TRUE(r.run_until(Phase::kLand, 30, &e));
+  for (int i = 0; i < 40; ++i) r.step(&e);  // a second into the turn
+  ASSERT_EQ(r.mc.phase(), Phase::kLand);
+  r.v.nav.position_m.x() += 1.5f;  // the fix: the vehicle is 1.5 m east of where it believed
+  r.step(&e);
+  EXPECT_EQ(r.mc.phase(), Phase::kReturn);
+  ASSERT_TRUE(r.run_until(Phase::kLand, 20, &e));
+  EXPECT_NEAR(r.v.nav.position_m.x(), 1.0f, 0.2f);  // home
+  EXPECT_NEAR(r.v.nav.position_m.y(), 2.0f, 0.2f);
+  // No second turn: it descends at once.
+  float heading = r.step(&e).heading_rad;
+  for (int i = 0; i < 20; ++i) {
+    const GuidanceSetpoint s = r.step(&e);
+    EXPECT_NEAR(angle_diff(s.heading_rad, heading), 0.0f, 1e-5f);
+    heading = s.heading_rad;
+  }
+  EXPECT_LT(r.step(&e).position_m.z(), p.takeoff_altitude_m - 0.1f);
+  EXPECT_TRUE(r.run_until(Phase::kLanded, 10, &e));
+  EXPECT_TRUE(r.mc.returned_home());
+}
+
 TEST(MissionController, RejectsBadConfiguration) {
   MissionController mc;
   MissionParams p;

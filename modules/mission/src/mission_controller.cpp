@@ -43,6 +43,9 @@ constexpr float kReturnProgressM = 0.1f;
 // The flight home's shortcut: a scan older than this is taken as this old (its pose carried
 // back no further; the composition passes only recent ones).
 constexpr float kMaxScanAgeS = 0.5f;
+// Landing at home after exploring, the estimate moved this far from home (a home
+// re-localisation's fix): fly home again, facing the way, rather than sidle there descending.
+constexpr float kRehomeM = 0.6f;
 // The most one step advances the mission's clock (timers): see step().
 constexpr Duration kMaxClockStep = Duration::from_us(1'000'000);
 }  // namespace
@@ -246,8 +249,9 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       if (return_index_ == 0 && arrived(nav, {home_.x(), home_.y(), alt})) {
         hold_point_ = {home_.x(), home_.y(), alt};
         ramp_z_ = alt;
+        // The home survey once: home again after a fix moved it, the vehicle lands.
+        survey_left_rad_ = kind_ == MissionKind::kExplore && !returned_home_ ? params_.home_survey_rad : 0.0f;
         returned_home_ = true;
-        survey_left_rad_ = kind_ == MissionKind::kExplore ? params_.home_survey_rad : 0.0f;
         enter(Phase::kLand, t);
         return hold(now, hold_point_, hold_heading_);
       }
@@ -286,6 +290,19 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       return s;
     }
     case Phase::kLand: {
+      if (kind_ == MissionKind::kExplore && returned_home_ && estimate_ok &&
+          (nav.position_m - hold_point_).head<2>().norm() > kRehomeM) {
+        // Home is a point of the estimate's frame; a fix of the estimate moved it metres off
+        // (autonomy/home_fix.hpp). Turning, or descending towards it, the vehicle would move
+        // there partly blind (the laser's rear arc): the flight home faces the way instead.
+        return_index_ = 0;
+        progress_index_ = 1;
+        shortcut_cursor_ = 0;
+        progress_at_ = t;
+        survey_left_rad_ = 0;
+        enter(Phase::kReturn, t);
+        return hold(now, {nav.position_m.x(), nav.position_m.y(), alt}, hold_heading_);
+      }
       if (returned_home_ && survey_left_rad_ > 0) {
         const float turn = std::min(survey_left_rad_, params_.return_yaw_rate_radps * dt);
         hold_heading_ = wrap_angle(hold_heading_ + turn);
