@@ -94,6 +94,11 @@ void LikelihoodMap::for_each_covered(const MapSegment& s, F&& f) {
   }
 }
 
+void LikelihoodMap::begin_centred(float x_m, float y_m) {
+  const float half = 0.5f * static_cast<float>(dim_) * resolution_m_;
+  begin(std::floor((x_m - half) / resolution_m_) * resolution_m_, std::floor((y_m - half) / resolution_m_) * resolution_m_);
+}
+
 void LikelihoodMap::begin(float origin_x_m, float origin_y_m) {
   for (std::size_t i = 0; i < segment_count_; ++i) {
     for_each_covered(segments_[i], [&](int x, int y) { cells_[static_cast<std::size_t>(y) * dim_ + x] = 0; });

@@ -1,7 +1,8 @@
 #include "kestrel/scan_matching/local_map.hpp"
 
+#include "kestrel/scan_matching/contour_drawing.hpp"
+
 #include <algorithm>
-#include <cmath>
 
 namespace kestrel::scan_matching {
 
@@ -71,39 +72,11 @@ Status LocalMap::rebuild() {
 Status LocalMap::draw_into(LikelihoodMap& m) {
   const std::size_t k = params_.keyframes;
   const Stored& newest = keys_[(head_ + count_ - 1) % k];
-  const float res = m.resolution_m();
-  // Centre the window on the newest key scan, on a grid of whole cells.
-  const float half = 0.5f * static_cast<float>(m.dim()) * res;
-  m.begin(std::floor((newest.pose.x - half) / res) * res, std::floor((newest.pose.y - half) / res) * res);
-  const float inv = static_cast<float>(kSub) / res;
-  const float lim = static_cast<float>(m.dim() * kSub - 1);
+  m.begin_centred(newest.pose.x, newest.pose.y);
   Status result = Status::kOk;
   for (std::size_t j = 0; j < count_; ++j) {
     const Stored& s = keys_[(head_ + j) % k];
-    const float c = std::cos(s.pose.theta), sn = std::sin(s.pose.theta);
-    const auto to_map = [&](uint16_t i, int16_t& mx, int16_t& my) {
-      const float wx = s.pose.x + c * s.points.x[i] - sn * s.points.y[i];
-      const float wy = s.pose.y + sn * s.points.x[i] + c * s.points.y[i];
-      const float fx = (wx - m.origin_x_m()) * inv, fy = (wy - m.origin_y_m()) * inv;
-      if (!(fx >= 0 && fx <= lim && fy >= 0 && fy <= lim)) return false;
-      mx = static_cast<int16_t>(fx);
-      my = static_cast<int16_t>(fy);
-      return true;
-    };
-    MapSegment seg;
-    for (uint16_t i = 0; i < s.contours.segment_count; ++i) {
-      if (to_map(s.contours.seg_a[i], seg.ax, seg.ay) && to_map(s.contours.seg_b[i], seg.bx, seg.by)) {
-        if (!ok(m.draw(seg))) result = Status::kCapacityExceeded;
-      }
-    }
-    for (uint16_t i = 0; i < s.contours.point_count; ++i) {
-      if (s.contours.degree[i] != 0) continue;
-      if (to_map(i, seg.ax, seg.ay)) {
-        seg.bx = seg.ax;
-        seg.by = seg.ay;
-        if (!ok(m.draw(seg))) result = Status::kCapacityExceeded;
-      }
-    }
+    if (!ok(draw_contours(m, s.pose, s.points, s.contours))) result = Status::kCapacityExceeded;
   }
   m.finish();
   return result;

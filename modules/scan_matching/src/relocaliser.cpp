@@ -1,5 +1,7 @@
 #include "kestrel/scan_matching/relocaliser.hpp"
 
+#include "kestrel/scan_matching/contour_drawing.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -42,36 +44,13 @@ Status Relocaliser::add_reference(const ScanPoints& pts, const Pose2& pose) {
   if (pts.count < params_.min_points) return Status::kNoData;
   if (reference_count_ >= kMaxReferenceScans) return Status::kCapacityExceeded;
   extractor_.extract(pts, contours_);
-  const float res = map_.resolution_m();
   if (reference_count_ == 0) {
-    const float half = 0.5f * static_cast<float>(map_.dim()) * res;
-    map_.begin(std::floor((pose.x - half) / res) * res, std::floor((pose.y - half) / res) * res);
+    map_.begin_centred(pose.x, pose.y);
     reference_pose_ = pose;
   }
-  const float inv = static_cast<float>(kSub) / res;
-  const float lim = static_cast<float>(map_.dim() * kSub - 1);
-  const float c = std::cos(pose.theta), s = std::sin(pose.theta);
-  const auto to_map = [&](uint16_t i, int16_t& mx, int16_t& my) {
-    if (!std::isfinite(pts.x[i]) || !std::isfinite(pts.y[i])) return false;
-    const float fx = (pose.x + c * pts.x[i] - s * pts.y[i] - map_.origin_x_m()) * inv;
-    const float fy = (pose.y + s * pts.x[i] + c * pts.y[i] - map_.origin_y_m()) * inv;
-    if (!(fx >= 0 && fx <= lim && fy >= 0 && fy <= lim)) return false;  // beyond the map: left out
-    mx = static_cast<int16_t>(fx);
-    my = static_cast<int16_t>(fy);
-    return true;
-  };
   // A scan has at most kMaxPoints segments and dots, the list holds kMaxReferenceScans of them:
-  // draw cannot fail.
-  MapSegment seg;
-  for (uint16_t i = 0; i < contours_.segment_count; ++i) {
-    if (to_map(contours_.seg_a[i], seg.ax, seg.ay) && to_map(contours_.seg_b[i], seg.bx, seg.by)) (void)map_.draw(seg);
-  }
-  for (uint16_t i = 0; i < contours_.point_count; ++i) {
-    if (contours_.degree[i] != 0 || !to_map(i, seg.ax, seg.ay)) continue;
-    seg.bx = seg.ax;
-    seg.by = seg.ay;
-    (void)map_.draw(seg);
-  }
+  // drawing cannot run out of room.
+  (void)draw_contours(map_, pose, pts, contours_);
   map_.finish();  // over everything drawn so far: the pyramid is rebuilt, not added to
   ++reference_count_;
   return Status::kOk;

@@ -77,6 +77,8 @@ class LikelihoodMap {
   // Starts a rebuild with a new origin (world position of the corner of cell (0,0), m):
   // clears the segments drawn last time and the coarse levels they touched.
   void begin(float origin_x_m, float origin_y_m);
+  // begin() with the window centred on a world point, its origin on the grid of whole cells.
+  void begin_centred(float x_m, float y_m);
   // Draws one segment (map frame, 1/kSub cells). kCapacityExceeded when the list is full.
   Status draw(const MapSegment& s);
   // Builds the coarse levels over the drawn area. The map is ready to search afterwards.
