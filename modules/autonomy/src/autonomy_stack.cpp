@@ -108,41 +108,47 @@ void AutonomyStack::background_step() {
   if (explorer_ != nullptr) explorer_->background_step();
   home_fix_.background_step();
   // A correction not yet taken holds the next scan back: the filter applies them in order.
-  if (!slam_in_full_.load(std::memory_order_acquire) || slam_out_ready_.load(std::memory_order_acquire)) return;
-  const slam::SlamResult r = slam_.process(slam_in_.points, slam_in_.prior);
+  if (slam_out_.full()) return;
+  const SlamInput* in = slam_in_.readable();
+  if (in == nullptr) return;
+  const slam::SlamResult r = slam_.process(in->points, in->prior);
   if (r.corrected()) {  // counted by the SLAM (slam().counters()); the filter counts its refusals
-    slam_out_ = {};
-    slam_out_.stamp = slam_in_.stamp;
-    slam_out_.pose = slam_in_.frame.compose(r.pose);
-    slam_out_ready_.store(true, std::memory_order_release);
+    PoseMeasurement2* out = slam_out_.writable();
+    *out = {};
+    out->stamp = in->stamp;
+    out->pose = in->frame.to_filter(r.pose);
+    slam_out_.post();
   }
-  slam_in_full_.store(false, std::memory_order_release);
+  slam_in_.done();
 }
 
 void AutonomyStack::take_slam_correction() {
-  if (!slam_out_ready_.load(std::memory_order_acquire)) return;
-  (void)filter_.apply_correction(slam_out_);  // refusals are counted by the filter
-  slam_out_ready_.store(false, std::memory_order_release);
+  const PoseMeasurement2* correction = slam_out_.readable();
+  if (correction == nullptr) return;
+  (void)filter_.apply_correction(*correction);  // refusals are counted by the filter
+  slam_out_.done();
   nav_ = filter_.state();
 }
 
 void AutonomyStack::offer_scan_to_slam() {
   // A correction that arrived since this scan's update would leave the prior stale: the next
   // scan is offered instead (on a board, background_step runs on its own thread).
-  if (slam_in_full_.load(std::memory_order_acquire) || slam_out_ready_.load(std::memory_order_acquire)) return;
+  if (slam_out_.full()) return;
+  SlamInput* in = slam_in_.writable();
+  if (in == nullptr) return;
   // Half a laser period of slack: a Hokuyo's stamps are whole milliseconds that jitter, and a
   // 10 Hz laser's 99 ms gap must not halve the SLAM's rate.
   const Duration period = Duration::from_s(config_.slam_period_s) - Duration{dev_.laser.geometry().scan_period.us / 2};
   if (slam_offered_ && scan_.stamp - last_slam_offer_ < period) return;
   scan_matching::PosePrior at_scan;
   if (!scan_prior_from_nav(nav_, scan_.stamp, at_scan)) return;
-  slam_in_.points = matcher_.scan_points();
-  slam_in_.prior = slam_frame_.inverse().compose(at_scan.pose);
-  slam_in_.stamp = scan_.stamp;
-  slam_in_.frame = slam_frame_;
+  in->points = matcher_.scan_points();
+  in->prior = slam_frame_.to_slam(at_scan.pose);
+  in->stamp = scan_.stamp;
+  in->frame = slam_frame_;
   last_slam_offer_ = scan_.stamp;
   slam_offered_ = true;
-  slam_in_full_.store(true, std::memory_order_release);
+  slam_in_.post();
 }
 
 void AutonomyStack::offer_scan_to_home_fix() {
@@ -166,8 +172,7 @@ void AutonomyStack::take_home_fix() {
     return;
   }
   ++counters_.home_fixes;
-  // The frame moved by after * before^-1; the SLAM's map did not.
-  slam_frame_ = filter_.frame_correction().compose(before.inverse()).compose(slam_frame_);
+  slam_frame_.filter_moved(before, filter_.frame_correction());
   nav_ = filter_.state();
 }
 

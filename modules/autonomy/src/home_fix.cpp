@@ -22,21 +22,22 @@ Status HomeFix::configure(const HomeFixConfig& c, const scan_matching::Params& m
   config_ = c;
   started_ = searched_ = have_pending_ = false;
   references_offered_ = 0;
-  in_full_.store(false);
-  out_ready_.store(false);
+  in_.clear();
+  out_.clear();
   counters_ = {};
   configured_ = c.enabled;
   return Status::kOk;
 }
 
 bool HomeFix::hand_over(const scan_matching::ScanPoints& points, const LaserScan& scan, const Pose2& pose, bool reference) {
-  if (in_full_.load(std::memory_order_acquire)) return false;
-  in_.points = points;
-  in_.scan = scan;
-  in_.pose = pose;
-  in_.stamp = scan.stamp;
-  in_.reference = reference;
-  in_full_.store(true, std::memory_order_release);
+  Input* in = in_.writable();
+  if (in == nullptr) return false;
+  in->points = points;
+  in->scan = scan;
+  in->pose = pose;
+  in->stamp = scan.stamp;
+  in->reference = reference;
+  in_.post();
   return true;
 }
 
@@ -65,7 +66,7 @@ void HomeFix::offer(const scan_matching::ScanPoints& points, const LaserScan& sc
   }
   if (!flying_home || std::hypot(pose.x - home_.x, pose.y - home_.y) > config_.radius_m) return;
   if (searched_ && (stamp - last_search_).seconds() < static_cast<double>(config_.period_s)) return;
-  if (out_ready_.load(std::memory_order_acquire)) return;  // a fix not yet taken: the guess would be stale
+  if (out_.full()) return;  // a fix not yet taken: the guess would be stale
   if (hand_over(points, scan, pose, false)) {
     last_search_ = stamp;
     searched_ = true;
@@ -73,19 +74,23 @@ void HomeFix::offer(const scan_matching::ScanPoints& points, const LaserScan& sc
 }
 
 bool HomeFix::take(PoseMeasurement2& fix) {
-  if (!out_ready_.load(std::memory_order_acquire)) return false;
-  fix = out_;
-  out_ready_.store(false, std::memory_order_release);
+  const PoseMeasurement2* out = out_.readable();
+  if (out == nullptr) return false;
+  fix = *out;
+  out_.done();
   return true;
 }
 
 void HomeFix::background_step() {
-  if (!in_full_.load(std::memory_order_acquire) || out_ready_.load(std::memory_order_acquire)) return;
-  if (in_.reference) {
-    if (relocaliser_.add_reference(in_.points, in_.pose) == Status::kOk) ++counters_.references;
+  // The output slot is this side's while it is empty: a fix found now has somewhere to go.
+  if (out_.full()) return;
+  const Input* in = in_.readable();
+  if (in == nullptr) return;
+  if (in->reference) {
+    if (relocaliser_.add_reference(in->points, in->pose) == Status::kOk) ++counters_.references;
   } else {
     ++counters_.searches;
-    const scan_matching::Relocalisation r = relocaliser_.locate(in_.points, in_.pose, &in_.scan);
+    const scan_matching::Relocalisation r = relocaliser_.locate(in->points, in->pose, &in->scan);
     if (!r.fixed()) {
       have_pending_ = false;
       switch (r.outcome) {
@@ -96,26 +101,27 @@ void HomeFix::background_step() {
       }
     } else {
       ++counters_.found;
-      const Pose2 correction = r.pose.compose(in_.pose.inverse());
+      const Pose2 correction = r.pose.compose(in->pose.inverse());
       const Pose2 diff = correction.compose(pending_.inverse());
       const bool agrees = have_pending_ && std::hypot(diff.x, diff.y) <= config_.agree_m && std::fabs(diff.theta) <= config_.agree_rad;
-      const bool new_view = std::hypot(in_.pose.x - pending_view_.x, in_.pose.y - pending_view_.y) >= config_.view_change_m ||
-                            std::fabs(wrap_angle(in_.pose.theta - pending_view_.theta)) >= config_.view_change_rad;
+      const bool new_view = std::hypot(in->pose.x - pending_view_.x, in->pose.y - pending_view_.y) >= config_.view_change_m ||
+                            std::fabs(wrap_angle(in->pose.theta - pending_view_.theta)) >= config_.view_change_rad;
       if (agrees && new_view) {
-        out_ = {};
-        out_.stamp = in_.stamp;
-        out_.pose = r.pose;
+        PoseMeasurement2* out = out_.writable();
+        *out = {};
+        out->stamp = in->stamp;
+        out->pose = r.pose;
         have_pending_ = false;
         ++counters_.confirmed;
-        out_ready_.store(true, std::memory_order_release);
+        out_.post();
       } else if (!agrees) {
         pending_ = correction;
-        pending_view_ = in_.pose;
+        pending_view_ = in->pose;
         have_pending_ = true;
       }  // the same fix from the same view: still waiting for another view
     }
   }
-  in_full_.store(false, std::memory_order_release);
+  in_.done();
 }
 
 }  // namespace kestrel::autonomy

@@ -21,8 +21,10 @@
 #include "kestrel/autonomy/scan_prior.hpp"
 #include "kestrel/autonomy/stack_config.hpp"
 #include "kestrel/autonomy/sensor_watchdog.hpp"
+#include "kestrel/autonomy/slam_frame.hpp"
 #include "kestrel/autonomy/task_table.hpp"
 #include "kestrel/control/controller.hpp"
+#include "kestrel/core/mailbox.hpp"
 #include "kestrel/core/scheduler.hpp"
 #include "kestrel/estimation/nav_filter.hpp"
 #include "kestrel/exploration/blend_explorer.hpp"
@@ -146,24 +148,19 @@ class AutonomyStack {
   slam::SlamMap slam_map_;
   slam::CompactSlam slam_{slam_map_};
 
-  // The SLAM's mailboxes, one slot each way. The scan task fills slam_in_ only while
-  // slam_in_full_ is false and then sets it; background_step() reads it only while it is set
-  // and clears it when done; the same for the correction the other way.
+  // The SLAM's mailboxes, one slot each way (core/mailbox.hpp): a matched scan to level 3, a
+  // correction back to the loop.
   struct SlamInput {
     scan_matching::ScanPoints points;
     Pose2 prior;   // in the SLAM's frame
     TimeUs stamp;
-    Pose2 frame;   // slam_frame_ when offered: the correction goes back through it
+    SlamFrame frame;  // slam_frame_ when offered: the correction goes back through it
   };
-  SlamInput slam_in_;
-  std::atomic<bool> slam_in_full_{false};
-  PoseMeasurement2 slam_out_;
-  std::atomic<bool> slam_out_ready_{false};
+  Mailbox<SlamInput> slam_in_;
+  Mailbox<PoseMeasurement2> slam_out_;
   TimeUs last_slam_offer_;
   bool slam_offered_ = false;
-  // The home re-localisation moves the filter's frame and leaves the SLAM's map where it was
-  // drawn: filter = slam_frame_ * SLAM. Written by the loop only.
-  Pose2 slam_frame_;
+  SlamFrame slam_frame_;  // the SLAM's map in the filter's frame (home fixes part them); loop only
   HomeFix home_fix_;
 
   LaserScan scan_;             // the scan being matched

@@ -23,9 +23,9 @@
 // in the room north of gt-building's home, a metre from the corridor's wall and facing it,
 // sees just what it would see in the corridor's end, the one difference in the laser's blind
 // arc.) Flying home gives new views; so do the survey turns.
-#include <atomic>
 #include <cstdint>
 
+#include "kestrel/core/mailbox.hpp"
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/se2.hpp"
 #include "kestrel/core/status.hpp"
@@ -120,10 +120,8 @@ class HomeFix {
   Pose2 pending_view_;
   bool have_pending_ = false;
 
-  Input in_;  // written by the loop while in_full_ is false, read by level 3 while it is true
-  std::atomic<bool> in_full_{false};
-  PoseMeasurement2 out_;
-  std::atomic<bool> out_ready_{false};
+  Mailbox<Input> in_;              // loop -> level 3: a scan to draw or search
+  Mailbox<PoseMeasurement2> out_;  // level 3 -> loop: a confirmed fix
   HomeFixCounters counters_;
 };
 
