@@ -170,6 +170,40 @@ TEST(CorrelativeSearch, SliceEqualsEveryPoseScore) {
   f.local->release();
 }
 
+// The best translation outside a disc, by branch and bound, is the maximum of the slice over
+// the translations outside it, on random scans, windows, rotations, centres and radii; a disc
+// that covers the whole window leaves nothing.
+TEST(CorrelativeSearch, BestOutsideADiscEqualsTheSlicesMaximumThere) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1, 1);
+  Fixture f(0.02f);
+  for (int trial = 0; trial < 16; ++trial) {
+    const Pose2 truth{0.3f * u(rng), 0.3f * u(rng), 0.15f * u(rng)};
+    const auto pts = test::to_points(test::cast_scan(truth, test::room(), 361));
+    const LikelihoodMap* m = f.local->acquire();
+    const int w = 5 + trial * 3;  // up to 50 cells, within the slice's 64
+    ASSERT_EQ(f.search->setup(pts, {0, 0, 0}, *m, w, 6, 0.0044f), Status::kOk);
+    std::uniform_int_distribution<int> cell(-w, w);
+    const int k = trial % 13 - 6, cx = cell(rng), cy = cell(rng);
+    const int radius = (trial % 4 == 3) ? 0 : 1 + (trial * 7) % (w + 1);
+    const uint16_t* sl = f.search->slice(k, 0, 0, w);
+    int32_t expect = -1;
+    for (int y = -w; y <= w; ++y) {
+      for (int x = -w; x <= w; ++x) {
+        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius) continue;
+        expect = std::max<int32_t>(expect, sl[static_cast<std::size_t>((y + w) * (2 * w + 1) + (x + w))]);
+      }
+    }
+    const GridPose got = f.search->best_outside(k, cx, cy, radius);
+    EXPECT_EQ(got.score, expect) << trial;
+    EXPECT_EQ(got.k, k);
+    EXPECT_GT((got.tx - cx) * (got.tx - cx) + (got.ty - cy) * (got.ty - cy), radius * radius) << trial;
+    EXPECT_EQ(got.score, f.search->score(k, got.tx, got.ty)) << trial;
+    EXPECT_EQ(f.search->best_outside(k, 0, 0, 2 * w).score, -1) << trial;  // the disc holds the window
+    f.local->release();
+  }
+}
+
 // Along a corridor whose walls run past the map's edges the score must stay flat: if points
 // crossing the edge counted for some translations and not others, shifting back towards the
 // key scan would bring more wall points into the map at the near edge than it loses at the

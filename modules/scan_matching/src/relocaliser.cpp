@@ -60,31 +60,27 @@ Status Relocaliser::add_reference(const ScanPoints& pts, const Pose2& pose) {
 // exclusion_m from the best, over the best's: how sure the search is of where in the scene it
 // stands.
 float Relocaliser::second_peak_ratio(const GridPose& best) {
-  const int half = search_.half_cells();
-  const int excl = cells(params_.exclusion_m, params_.resolution_m);
-  const uint16_t* img = search_.slice(best.k, 0, 0, half);
-  const int w = 2 * half + 1;
-  int32_t second = 0;
-  for (int y = -half; y <= half; ++y) {
-    for (int x = -half; x <= half; ++x) {
-      const int dx = x - best.tx, dy = y - best.ty;
-      if (dx * dx + dy * dy <= excl * excl) continue;
-      second = std::max<int32_t>(second, img[static_cast<std::size_t>((y + half) * w + (x + half))]);
-    }
-  }
-  return best.score > 0 ? static_cast<float>(second) / static_cast<float>(best.score) : 1.0f;
+  const GridPose second = search_.best_outside(best.k, best.tx, best.ty, cells(params_.exclusion_m, params_.resolution_m));
+  return best.score > 0 ? static_cast<float>(std::max(0, second.score)) / static_cast<float>(best.score) : 1.0f;
 }
 
 // Whether the ray from the pose at `angle` (world frame) meets a cell the reference drew as
-// wall within reach_m: walked cell by cell, about 100 lookups for 4 m.
+// wall within reach_m: walked cell by cell, about 100 lookups for 4 m, in Q16 cells (the
+// Verdex has no FPU: in float the walk cost a third of a search there).
 bool Relocaliser::passes_a_wall(const Pose2& pose, float angle, float reach_m) const {
+  constexpr float kOne = 65536.0f;
   const float inv = 1.0f / map_.resolution_m();
-  const float reach = reach_m * inv;
+  // Within the map's span: the ray's cells and their Q16 sums stay far inside int32.
+  const auto steps = static_cast<int32_t>(std::min(reach_m * inv, 2.0f * static_cast<float>(map_.dim())));
   const auto wall = static_cast<uint8_t>(std::ceil(params_.wall_level * static_cast<float>(kCellMax)));
-  const float ox = (pose.x - map_.origin_x_m()) * inv, oy = (pose.y - map_.origin_y_m()) * inv;
-  const float dx = std::cos(angle), dy = std::sin(angle);
-  for (float k = 1.0f; k <= reach; k += 1.0f) {
-    if (map_.at(static_cast<int>(std::floor(ox + k * dx)), static_cast<int>(std::floor(oy + k * dy))) >= wall) return true;
+  auto x = static_cast<int32_t>(std::lround((pose.x - map_.origin_x_m()) * inv * kOne));
+  auto y = static_cast<int32_t>(std::lround((pose.y - map_.origin_y_m()) * inv * kOne));
+  const auto dx = static_cast<int32_t>(std::lround(std::cos(angle) * kOne));
+  const auto dy = static_cast<int32_t>(std::lround(std::sin(angle) * kOne));
+  for (int32_t k = 1; k <= steps; ++k) {
+    x += dx;
+    y += dy;
+    if (map_.at(x >> 16, y >> 16) >= wall) return true;  // arithmetic shift: floor
   }
   return false;
 }

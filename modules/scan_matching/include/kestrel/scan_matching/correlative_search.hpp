@@ -77,6 +77,11 @@ class CorrelativeSearch {
   // Best translation at one rotation, exact (no pruning against other rotations); the seed is
   // any translation inside the window, ideally near the answer.
   GridPose best_at(int k, int seed_tx = 0, int seed_ty = 0);
+  // Best translation at rotation k farther than `radius` cells from (cx, cy), exact (the max
+  // of the slice over the window outside that disc), by branch and bound: blocks that lie
+  // inside the disc or cannot beat the best found are skipped. score -1 when every
+  // translation of the window is inside the disc. Ties: any of the best.
+  GridPose best_outside(int k, int cx, int cy, int radius);
   // Score image at rotation k over translations (cx +- half, cy +- half), row-major,
   // (2 half + 1)^2 values, by image addition. half <= kMaxExhaustiveWindow.
   const uint16_t* slice(int k, int cx, int cy, int half);
@@ -128,6 +133,9 @@ class CorrelativeSearch {
   int32_t exact(int tx, int ty) const;  // score of a translation at the current rotation
   void accumulate(int x0, int y0, int w);
   void dfs(int k, int32_t root_bound, GridPose& best);
+  // Orders up to four children so that the one to explore first is last (best bound; equal
+  // bounds in (y, x) order), ready to push.
+  static void order_best_last(Node* kids, int n);
   bool seen_by_a_key_scan(int32_t x, int32_t y) const;
   static bool better(const GridPose& a, const GridPose& b);
 
