@@ -44,7 +44,7 @@ TEST(Mailbox, TwoThreadsSeeWholeMessagesInOrder) {
   };
   static Mailbox<Message> box;
   box.clear();
-  constexpr uint32_t kMessages = 5000;
+  constexpr uint32_t kMessages = 2000;
   std::thread producer([] {
     uint32_t next = 1;
     while (next <= kMessages) {
