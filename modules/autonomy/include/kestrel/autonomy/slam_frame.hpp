@@ -18,8 +18,6 @@ class SlamFrame {
   // after * before^-1 in the world, the SLAM's did not.
   void filter_moved(const Pose2& before, const Pose2& after) { frame_ = after.compose(before.inverse()).compose(frame_); }
 
-  const Pose2& pose() const { return frame_; }
-
  private:
   Pose2 frame_;
 };
