@@ -210,7 +210,7 @@ TEST(Relocaliser, RefusesBadInputWithAReason) {
   Relocaliser r;
   const LaserModel m = LaserModel::urg04lx();
   RelocaliserParams p;
-  p.window_m = 3.0f;  // more cells than the second peak's image holds
+  p.window_m = 3.0f;  // more cells than kMaxExhaustiveWindow, the window's bound
   EXPECT_EQ(r.configure(p, matcher_for(m)), Status::kInvalidArgument);
   p = {};
   p.exclusion_m = p.window_m;

@@ -20,8 +20,9 @@
 //   - it is unambiguous: at the best rotation, no translation of the window farther than
 //     exclusion_m from the best scores max_second_ratio of it or more. Along a corridor, or
 //     facing a plain wall, or between two alike doors, the search cannot tell which, and then
-//     it does not say. The whole window is scored at that rotation (image addition), so its
-//     half-width is held to kMaxExhaustiveWindow cells: 2.56 m at 4 cm;
+//     it does not say. The rival is found by branch and bound at that rotation
+//     (CorrelativeSearch::best_outside); the half-width is still held to
+//     kMaxExhaustiveWindow cells, 2.56 m at 4 cm, the bound of the image addition it replaced;
 //   - it does not see through the reference's walls: placed at the best pose, at most
 //     max_see_through of the scan's beams pass a wall the reference drew (a cell of
 //     wall_level or more) short of their return by see_through_margin_m, or, for a beam that
