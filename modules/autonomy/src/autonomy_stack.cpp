@@ -132,10 +132,11 @@ void AutonomyStack::take_slam_correction() {
 
 void AutonomyStack::offer_scan_to_slam() {
   // A correction that arrived since this scan's update would leave the prior stale: the next
-  // scan is offered instead (on a board, background_step runs on its own thread).
-  if (slam_out_.full()) return;
+  // scan is offered instead (on a board, background_step runs on its own thread). The output
+  // is read after the input slot is found free: level 3 posts a correction before it frees
+  // the slot, so a free slot shows every correction made from the last scan.
   SlamInput* in = slam_in_.writable();
-  if (in == nullptr) return;
+  if (in == nullptr || slam_out_.full()) return;
   // Half a laser period of slack: a Hokuyo's stamps are whole milliseconds that jitter, and a
   // 10 Hz laser's 99 ms gap must not halve the SLAM's rate.
   const Duration period = Duration::from_s(config_.slam_period_s) - Duration{dev_.laser.geometry().scan_period.us / 2};

@@ -31,7 +31,9 @@ Status HomeFix::configure(const HomeFixConfig& c, const scan_matching::Params& m
 
 bool HomeFix::hand_over(const scan_matching::ScanPoints& points, const LaserScan& scan, const Pose2& pose, bool reference) {
   Input* in = in_.writable();
-  if (in == nullptr) return false;
+  // A fix not yet taken would leave a search's guess stale. Read after the input slot is found
+  // free: level 3 posts a fix before it frees the slot, so a free slot shows it.
+  if (in == nullptr || (!reference && out_.full())) return false;
   in->points = points;
   in->scan = scan;
   in->pose = pose;
@@ -66,7 +68,6 @@ void HomeFix::offer(const scan_matching::ScanPoints& points, const LaserScan& sc
   }
   if (!flying_home || std::hypot(pose.x - home_.x, pose.y - home_.y) > config_.radius_m) return;
   if (searched_ && (stamp - last_search_).seconds() < static_cast<double>(config_.period_s)) return;
-  if (out_.full()) return;  // a fix not yet taken: the guess would be stale
   if (hand_over(points, scan, pose, false)) {
     last_search_ = stamp;
     searched_ = true;

@@ -22,7 +22,10 @@ class Mailbox {
   T* readable() { return full_.load(std::memory_order_acquire) ? &slot_ : nullptr; }
   void done() { full_.store(false, std::memory_order_release); }
 
-  // Either side: whether a message waits (for the other mailbox's side of a hand-shake).
+  // Either side: whether a message waits (for the other mailbox's side of a hand-shake). Two
+  // mailboxes used as a request and its reply: the replier posts the reply before it frees
+  // the request's slot, so the requester must find the request slot free first and read this
+  // flag after; the other order can miss a reply posted in between.
   bool full() const { return full_.load(std::memory_order_acquire); }
   // Start-up only, with neither side running.
   void clear() { full_.store(false, std::memory_order_relaxed); }
