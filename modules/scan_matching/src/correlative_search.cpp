@@ -404,22 +404,28 @@ void CorrelativeSearch::dfs(int k, int32_t root_bound, GridPose& best) {
       nodes_ += static_cast<uint64_t>(bs * bs - 1);
       continue;
     }
-    const int level = n.level - 1;
-    const int half = 1 << level;
-    Node kids[4];
-    int nk = 0;
-    std::array<int32_t, 4> bounds{};
-    child_bounds(level, n.tx, n.ty, bounds);
-    for (int c = 0; c < 4; ++c) {
-      const int tx = n.tx + ((c & 1) ? half : 0), ty = n.ty + ((c & 2) ? half : 0);
-      if (tx > half_cells_ || ty > half_cells_) continue;  // block entirely outside the window
-      const int32_t b = bounds[static_cast<std::size_t>(c)];
-      if (b < best.score) continue;
-      kids[nk++] = {tx, ty, b, static_cast<int8_t>(level)};
-    }
-    order_best_last(kids, nk);
-    for (int c = 0; c < nk; ++c) stack_[top++] = kids[c];
+    push_children(n, best.score, top);
   }
+}
+
+// A child whose bound only ties the best is still pushed by dfs (min_bound = the best score):
+// it may win on the tie-break. best_outside wants any of the best and passes one above.
+void CorrelativeSearch::push_children(const Node& n, int32_t min_bound, std::size_t& top) {
+  const int level = n.level - 1;
+  const int half = 1 << level;
+  std::array<int32_t, 4> bounds{};
+  child_bounds(level, n.tx, n.ty, bounds);
+  Node kids[4];
+  int nk = 0;
+  for (int c = 0; c < 4; ++c) {
+    const int tx = n.tx + ((c & 1) ? half : 0), ty = n.ty + ((c & 2) ? half : 0);
+    const int32_t b = bounds[static_cast<std::size_t>(c)];
+    // A block that starts beyond the window's far edge holds no translation of it.
+    if (tx > half_cells_ || ty > half_cells_ || b < min_bound) continue;
+    kids[nk++] = {tx, ty, b, static_cast<int8_t>(level)};
+  }
+  order_best_last(kids, nk);
+  for (int c = 0; c < nk; ++c) stack_[top++] = kids[c];
 }
 
 // Insertion sort: at most four children (and std::sort on a 4-array trips GCC 12's
@@ -465,20 +471,7 @@ GridPose CorrelativeSearch::best_outside(int k, int cx, int cy, int radius) {
       best = {k, n.tx, n.ty, n.bound};
       continue;
     }
-    const int level = n.level - 1;
-    const int half = 1 << level;
-    std::array<int32_t, 4> bounds{};
-    child_bounds(level, n.tx, n.ty, bounds);
-    Node kids[4];
-    int nk = 0;
-    for (int c = 0; c < 4; ++c) {
-      const int tx = n.tx + ((c & 1) ? half : 0), ty = n.ty + ((c & 2) ? half : 0);
-      const int32_t b = bounds[static_cast<std::size_t>(c)];
-      if (tx > half_cells_ || ty > half_cells_ || b <= best.score) continue;
-      kids[nk++] = {tx, ty, b, static_cast<int8_t>(level)};
-    }
-    order_best_last(kids, nk);
-    for (int c = 0; c < nk; ++c) stack_[top++] = kids[c];
+    push_children(n, best.score + 1, top);  // at most 255 a point: far from overflow
   }
   return best;
 }

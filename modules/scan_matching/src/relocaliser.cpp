@@ -70,7 +70,10 @@ float Relocaliser::second_peak_ratio(const GridPose& best) {
 bool Relocaliser::passes_a_wall(const Pose2& pose, float angle, float reach_m) const {
   constexpr float kOne = 65536.0f;
   const float inv = 1.0f / map_.resolution_m();
-  // Within the map's span: the ray's cells and their Q16 sums stay far inside int32.
+  // int32 range: locate() takes a guess only within half the map of the reference (the map's
+  // centre), and the pose walked from is that guess moved within the search window, so the
+  // start lies within a map's width of the map (at most 2047 cells); the walk adds at most two
+  // widths more. Three widths in Q16 cells are below 2^29.
   const auto steps = static_cast<int32_t>(std::min(reach_m * inv, 2.0f * static_cast<float>(map_.dim())));
   const auto wall = static_cast<uint8_t>(std::ceil(params_.wall_level * static_cast<float>(kCellMax)));
   auto x = static_cast<int32_t>(std::lround((pose.x - map_.origin_x_m()) * inv * kOne));

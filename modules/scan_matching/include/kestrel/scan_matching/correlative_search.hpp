@@ -133,6 +133,9 @@ class CorrelativeSearch {
   int32_t exact(int tx, int ty) const;  // score of a translation at the current rotation
   void accumulate(int x0, int y0, int w);
   void dfs(int k, int32_t root_bound, GridPose& best);
+  // Pushes the children of block n (level n.level - 1) that hold translations of the window
+  // and have a bound of at least min_bound, the one to explore first on top.
+  void push_children(const Node& n, int32_t min_bound, std::size_t& top);
   // Orders up to four children so that the one to explore first is last (best bound; equal
   // bounds in (y, x) order), ready to push.
   static void order_best_last(Node* kids, int n);
