@@ -170,7 +170,7 @@ ScanPoints room_points(const Pose2& pose, float scale, std::size_t stride) {
 }
 
 // One home re-localisation search (level 3, at most once a second on the way home): the
-// default window, +-2.5 m and +-0.3 rad at 4 cm and 0.01 rad, against five reference scans of
+// default window, +-4.5 m and +-0.3 rad at 4 cm and 0.01 rad, against five reference scans of
 // the 15 x 10 m hall, the guess 1.4 m and 0.1 rad off; then the rival peak outside 0.5 m at
 // the best rotation, and the beams walked for see-through against the raw scan, as in flight.
 // The UTM-30LX's 1081 beams, and every other one of them (541: about the URG-04LX's returns

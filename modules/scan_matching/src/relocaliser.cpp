@@ -19,7 +19,7 @@ Status validate(const RelocaliserParams& p) {
       !(p.max_second_ratio > 0.0f && p.max_second_ratio <= 1.0f) || !(p.max_see_through >= 0.0f && p.max_see_through <= 1.0f) ||
       !(p.see_through_margin_m >= 0.0f && p.see_through_margin_m <= 5.0f) || !(p.wall_level > 0.0f && p.wall_level <= 1.0f))
     return Status::kInvalidArgument;
-  if (cells(p.window_m, p.resolution_m) > kMaxExhaustiveWindow ||
+  if (cells(p.window_m, p.resolution_m) > kMaxWindowCells ||
       cells(p.window_rad, p.angle_step_rad) > kMaxThetaSteps)
     return Status::kInvalidArgument;
   return Status::kOk;

@@ -21,8 +21,7 @@
 //     exclusion_m from the best scores max_second_ratio of it or more. Along a corridor, or
 //     facing a plain wall, or between two alike doors, the search cannot tell which, and then
 //     it does not say. The rival is found by branch and bound at that rotation
-//     (CorrelativeSearch::best_outside); the half-width is still held to
-//     kMaxExhaustiveWindow cells, 2.56 m at 4 cm, the bound of the image addition it replaced;
+//     (CorrelativeSearch::best_outside), as wide as the search (kMaxWindowCells);
 //   - it does not see through the reference's walls: placed at the best pose, at most
 //     max_see_through of the scan's beams pass a wall the reference drew (a cell of
 //     wall_level or more) short of their return by see_through_margin_m, or, for a beam that
@@ -32,7 +31,7 @@
 //     where it was taken, save that the room's open side, where the laser found nothing,
 //     lies beyond the corridor's far wall. Without the raw scan, only returns are walked.
 //
-// No heap: the map (0.6 MiB) and the search are inside the object, allocated once.
+// No heap: the map (0.8 MiB with its pyramid) and the search are inside the object, allocated once.
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
@@ -46,16 +45,16 @@
 
 namespace kestrel::scan_matching {
 
-// 640 cells of 4 cm: 25.6 m, so that a 4 m laser 4 m from the reference, searched +-2.5 m,
-// keeps its points inside the map.
-inline constexpr int kRelocaliserMapDim = 640;
+// 768 cells of 4 cm: 30.7 m, so that a 4 m laser 4 m from the reference, searched +-4.5 m,
+// keeps its points inside the map (2 x (4 + 4 + 4.5) m = 25 m, and the kernel's margin).
+inline constexpr int kRelocaliserMapDim = 768;
 inline constexpr std::size_t kMaxReferenceScans = 6;
 
 struct RelocaliserParams {
   float resolution_m = 0.04f;    // map cell and translation step
   float sigma_m = 0.04f;         // likelihood falls to 0 at 3 sigma from a contour
   float angle_step_rad = 0.01f;  // 4 cm at 4 m
-  float window_m = 2.5f;         // translation half-window around the guess
+  float window_m = 4.5f;         // translation half-window around the guess
   float window_rad = 0.3f;       // rotation half-window
   float min_score = 0.35f;       // mean cell / kCellMax of the best pose
   uint16_t min_points = 60;      // points the map judges at the best pose
