@@ -572,6 +572,74 @@ TEST(MissionController, AFixThatMovesHomeAwayReopensTheFlightHome) {
   EXPECT_TRUE(r.mc.returned_home());
 }
 
+// GIVEN an explore mission whose flight home stalls 2 m from home (the trail runs into a wall:
+// the estimate has drifted), within stall_survey_radius_m WHEN it stalls THEN it turns on the
+// spot at altitude (the home re-localisation gets its second view) before descending, and a
+// fix that moves it 1.5 m re-opens the flight home, which lands at home. Beyond the radius, or
+// stalled a second time, it lands where it is at once.
+TEST(MissionController, StalledNearHomeItTurnsOnTheSpotAndAFixReopensTheWayHome) {
+  MissionParams p;
+  p.return_stall_s = 5.0f;
+  p.home_survey_rad = 2.0f * kPi<float>;
+  p.stall_survey_radius_m = 4.0f;
+  ExplorerOutput e;
+  const auto stall = [&](MissionRun& r, float east_m) {
+    EXPECT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, static_cast<int>(east_m / (0.5f * MissionRun::kDt))}}));
+    r.v.speed = 0.0f;  // held by the wall
+    EXPECT_TRUE(r.run_until(Phase::kLand, p.return_stall_s + 1.0f, &e));
+    EXPECT_FALSE(r.mc.returned_home());
+  };
+  // The heading turned over n steps, and the lowest set-point meanwhile.
+  struct Turn {
+    float turned = 0, lowest = 1e9f;
+  };
+  const auto turn_of = [&](MissionRun& r, int n) {
+    Turn out;
+    float heading = r.step(&e).heading_rad;
+    for (int i = 0; i < n; ++i) {
+      const GuidanceSetpoint s = r.step(&e);
+      out.lowest = std::min(out.lowest, s.position_m.z());
+      out.turned += angle_diff(s.heading_rad, heading);
+      heading = s.heading_rad;
+    }
+    return out;
+  };
+
+  MissionRun r;
+  stall(r, 2.0f);
+  const Turn turn = turn_of(r, 80);
+  EXPECT_NEAR(turn.turned, 80 * p.return_yaw_rate_radps * MissionRun::kDt, 0.01f);
+  EXPECT_GE(turn.lowest, p.takeoff_altitude_m - 1e-4f);
+  ASSERT_EQ(r.mc.phase(), Phase::kLand);
+  EXPECT_TRUE(r.mc.homing());  // the home re-localisation goes on searching
+  r.v.nav.position_m.x() += 1.5f;  // the fix: 1.5 m further east than it believed
+  r.v.speed = 1.0f;                // and the way home is the one the laser shows open
+  r.step(&e);
+  EXPECT_EQ(r.mc.phase(), Phase::kReturn);
+  ASSERT_TRUE(r.run_until(Phase::kLanded, 60, &e));
+  EXPECT_TRUE(r.mc.returned_home());
+  EXPECT_NEAR(r.v.nav.position_m.x(), 1.0f, 0.2f);
+  EXPECT_NEAR(r.v.nav.position_m.y(), 2.0f, 0.2f);
+
+  // Stalled again after the fix: no second turn.
+  MissionRun twice;
+  stall(twice, 2.0f);
+  for (int i = 0; i < 40; ++i) twice.step(&e);
+  twice.v.nav.position_m.x() += 1.5f;
+  twice.step(&e);
+  ASSERT_EQ(twice.mc.phase(), Phase::kReturn);
+  ASSERT_TRUE(twice.run_until(Phase::kLand, p.return_stall_s + 1.0f, &e));
+  EXPECT_NEAR(turn_of(twice, 40).turned, 0.0f, 1e-5f);
+  EXPECT_LT(twice.step(&e).position_m.z(), p.takeoff_altitude_m - 0.2f);  // descending
+
+  // Stalled 5 m from home, beyond the radius: it descends at once.
+  MissionRun far;
+  stall(far, 5.0f);
+  EXPECT_FALSE(far.mc.homing());
+  EXPECT_NEAR(turn_of(far, 40).turned, 0.0f, 1e-5f);
+  EXPECT_LT(far.step(&e).position_m.z(), p.takeoff_altitude_m - 0.2f);
+}
+
 TEST(MissionController, RejectsBadConfiguration) {
   MissionController mc;
   MissionParams p;
@@ -581,6 +649,9 @@ TEST(MissionController, RejectsBadConfiguration) {
   EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
   p.takeoff_survey_rad = 0;
   p.home_survey_rad = -1.0f;
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p.home_survey_rad = 0;
+  p.stall_survey_radius_m = std::nanf("");
   EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
   p = MissionParams{};
   p.takeoff_altitude_m = std::nanf("");

@@ -54,6 +54,7 @@ Status AutonomyStack::configure(const StackConfig& c) {
   if (c.home_fix.enabled) {
     mp.takeoff_survey_rad = c.home_fix.survey_rad;
     mp.home_survey_rad = c.home_fix.home_survey_rad;
+    mp.stall_survey_radius_m = c.home_fix.radius_m;  // where it searches
   }
   if (mission_.configure(c.mission_kind, mp, &c.waypoints) != Status::kOk) {
     configure_error_ = "mission parameters or waypoints";
@@ -158,7 +159,7 @@ void AutonomyStack::offer_scan_to_home_fix() {
   scan_matching::PosePrior at_scan;
   if (!scan_prior_from_nav(nav_, scan_.stamp, at_scan)) return;
   const mission::Phase phase = mission_.phase();
-  const bool homing = phase == mission::Phase::kReturn || (phase == mission::Phase::kLand && mission_.returned_home());
+  const bool homing = mission_.homing();
   const bool at_altitude = (phase == mission::Phase::kTakeoff || phase == mission::Phase::kExplore) &&
                            nav_.position_m.z() >= 0.8f * mission_.params().takeoff_altitude_m;
   home_fix_.offer(matcher_.scan_points(), scan_, at_scan.pose, homing, at_altitude);

@@ -50,6 +50,10 @@ constexpr float kRehomeM = 0.6f;
 constexpr Duration kMaxClockStep = Duration::from_us(1'000'000);
 }  // namespace
 
+bool MissionController::homing() const {
+  return phase_ == Phase::kReturn || (phase_ == Phase::kLand && (returned_home_ || stall_surveyed_));
+}
+
 Status MissionController::configure(MissionKind kind, const MissionParams& p, const IVector<Waypoint>* waypoints) {
   if (!positive_finite(p.takeoff_altitude_m) || !positive_finite(p.climb_rate_mps) ||
       !positive_finite(p.descent_rate_mps) || !positive_finite(p.arrive_radius_m) ||
@@ -58,6 +62,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
       !positive_finite(p.return_yaw_rate_radps) || !positive_finite(p.return_stall_s) ||
       !positive_finite(p.shortcut_clearance_m) ||
       !(std::isfinite(p.home_survey_rad) && p.home_survey_rad >= 0 && p.home_survey_rad <= 4.0f * kPi<float>) ||
+      !(std::isfinite(p.stall_survey_radius_m) && p.stall_survey_radius_m >= 0) ||
       !(std::isfinite(p.takeoff_survey_rad) && p.takeoff_survey_rad >= 0 && p.takeoff_survey_rad <= 4.0f * kPi<float>) ||
       !(std::isfinite(p.hover_duration_s) && p.hover_duration_s >= 0) ||
       !(std::isfinite(p.preflight_s) && p.preflight_s >= 0) ||
@@ -82,6 +87,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
   trail_ = BreadcrumbTrail(p.breadcrumb_spacing_m);
   phase_ = Phase::kIdle;
   returned_home_ = false;
+  stall_surveyed_ = false;
   shortcuts_ = 0;
   seen_estimate_ = false;
   configured_ = true;
@@ -269,6 +275,11 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       } else if ((t - progress_at_).seconds() > params_.return_stall_s) {
         hold_point_ = {nav.position_m.x(), nav.position_m.y(), alt};
         ramp_z_ = alt;
+        if (kind_ == MissionKind::kExplore && !stall_surveyed_ &&
+            (nav.position_m - home_).head<2>().norm() <= params_.stall_survey_radius_m) {
+          survey_left_rad_ = params_.home_survey_rad;
+          stall_surveyed_ = true;
+        }
         enter(Phase::kLand, t);
         return hold(now, hold_point_, hold_heading_);
       }
@@ -290,11 +301,14 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       return s;
     }
     case Phase::kLand: {
-      if (kind_ == MissionKind::kExplore && returned_home_ && estimate_ok &&
+      const bool surveyed = returned_home_ || stall_surveyed_;
+      if (kind_ == MissionKind::kExplore && surveyed && estimate_ok &&
           (nav.position_m - hold_point_).head<2>().norm() > kRehomeM) {
         // Home is a point of the estimate's frame; a fix of the estimate moved it metres off
         // (autonomy/home_fix.hpp). Turning, or descending towards it, the vehicle would move
         // there partly blind (the laser's rear arc): the flight home faces the way instead.
+        // Landing short of home after a stall, the same fix shows the way home no longer runs
+        // into the wall.
         return_index_ = 0;
         progress_index_ = 1;
         shortcut_cursor_ = 0;
@@ -303,7 +317,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         enter(Phase::kReturn, t);
         return hold(now, {nav.position_m.x(), nav.position_m.y(), alt}, hold_heading_);
       }
-      if (returned_home_ && survey_left_rad_ > 0) {
+      if (surveyed && survey_left_rad_ > 0) {
         const float turn = std::min(survey_left_rad_, params_.return_yaw_rate_radps * dt);
         hold_heading_ = wrap_angle(hold_heading_ + turn);
         survey_left_rad_ -= turn;

@@ -76,6 +76,12 @@ struct MissionParams {
   // vehicle believes home is. 0: descend at once.
   float home_survey_rad = 0.0f;
   float return_stall_s = 30.0f;        // no progress home for this long: land where it is
+  // Explore missions: a flight home stalled within this distance of home (by the estimate)
+  // turns home_survey_rad on the spot before it lands there, once. Stalled near home, the trail
+  // runs into a wall because the estimate has drifted; hovering still, the home re-localisation
+  // finds where it is but never from a second view, which it needs to confirm (home_fix.hpp).
+  // A fix that moves the vehicle kRehomeM or more re-opens the flight home. 0: land at once.
+  float stall_survey_radius_m = 0.0f;
   float breadcrumb_spacing_m = 0.4f;
   bool return_shortcut = true;         // leave the trail where the scan shows a way nearer home
   float shortcut_clearance_m = 0.45f;  // ... clear by this (the approach limiter stops at 0.4 m)
@@ -110,6 +116,9 @@ class MissionController {
   bool finished() const { return phase_ == Phase::kLanded; }
   // The flight home reached home (false while under way, and after landing short of it).
   bool returned_home() const { return returned_home_; }
+  // Flying home, or over where it lands after that flight (home, or where the flight home
+  // stalled near it): where the home re-localisation searches (autonomy/home_fix.hpp).
+  bool homing() const;
   // True while the motors should run (take-off until touchdown).
   bool wants_armed() const { return phase_ != Phase::kIdle && phase_ != Phase::kLanded; }
   // True while the vehicle rests on the ground (before take-off, after touchdown).
@@ -161,6 +170,7 @@ class MissionController {
   float progress_distance_ = 0;
   TimeUs progress_at_;
   bool returned_home_ = false;
+  bool stall_surveyed_ = false;  // the stalled flight home's turn has begun (once a mission)
   std::size_t shortcut_cursor_ = 0;  // the breadcrumb look_for_shortcut examines next
   uint32_t shortcuts_ = 0;
   bool configured_ = false;
