@@ -80,7 +80,7 @@ struct MissionParams {
   // turns home_survey_rad on the spot before it lands there, once. Stalled near home, the trail
   // runs into a wall because the estimate has drifted; hovering still, the home re-localisation
   // finds where it is but never from a second view, which it needs to confirm (home_fix.hpp).
-  // A fix that moves the vehicle kRehomeM or more re-opens the flight home. 0: land at once.
+  // A fix that moves the vehicle 0.6 m or more re-opens the flight home. 0: land at once.
   float stall_survey_radius_m = 0.0f;
   float breadcrumb_spacing_m = 0.4f;
   bool return_shortcut = true;         // leave the trail where the scan shows a way nearer home

@@ -1,6 +1,6 @@
 #pragma once
 // Finds the vehicle again against a few remembered scans, over a window far wider than the
-// scan matcher's: where the estimate has drifted a metre or two from the frame the scans were
+// scan matcher's: where the estimate has drifted metres (up to 4.5) from the frame the scans were
 // taken in, and nothing else the vehicle carries still holds that frame. The vehicle remembers
 // its take-off scan and a few from its first minute near home, when the estimate had not yet
 // drifted, and, flying home after a long exploration, asks where it stands relative to them
