@@ -51,7 +51,7 @@ constexpr Duration kMaxClockStep = Duration::from_us(1'000'000);
 }  // namespace
 
 bool MissionController::homing() const {
-  return phase_ == Phase::kReturn || (phase_ == Phase::kLand && (returned_home_ || stall_surveyed_));
+  return phase_ == Phase::kReturn || (phase_ == Phase::kLand && landing_after_flight_home());
 }
 
 Status MissionController::configure(MissionKind kind, const MissionParams& p, const IVector<Waypoint>* waypoints) {
@@ -301,7 +301,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       return s;
     }
     case Phase::kLand: {
-      const bool surveyed = returned_home_ || stall_surveyed_;
+      const bool surveyed = landing_after_flight_home();
       if (kind_ == MissionKind::kExplore && surveyed && estimate_ok &&
           (nav.position_m - hold_point_).head<2>().norm() > kRehomeM) {
         // Home is a point of the estimate's frame; a fix of the estimate moved it metres off

@@ -134,6 +134,9 @@ class MissionController {
 
  private:
   void enter(Phase p, TimeUs now);
+  // The flight home ended over home, or stalled near it and turned there: what lands now
+  // lands where the home re-localisation searches.
+  bool landing_after_flight_home() const { return returned_home_ || stall_surveyed_; }
   bool arrived(const NavState& nav, const Eigen::Vector3f& target) const;
   GuidanceSetpoint hold(TimeUs now, const Eigen::Vector3f& p, float heading) const;
   // Flying home and landing there: the horizontal velocity towards a point `offset` away, at
