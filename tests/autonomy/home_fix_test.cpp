@@ -53,14 +53,15 @@ struct Harness {
   TimeUs t = TimeUs::from_s(10.0);
 };
 
-// The first minute: on the ground, then at altitude it turns round and moves off.
-void first_minute(Harness& h) {
-  for (int i = 0; i < 20; ++i) h.scan({0, 0, 0}, {0, 0, 0}, false, /*at_altitude=*/false);
+// The first minute: on the ground, then at altitude it turns round and moves off. `frame`: the
+// estimate's frame (believed = frame * truth), home at its origin unless given.
+void first_minute(Harness& h, const Pose2& frame = {}) {
+  for (int i = 0; i < 20; ++i) h.scan({0, 0, 0}, frame, false, /*at_altitude=*/false);
   EXPECT_EQ(h.fix->counters().references, 0u);  // on the ground the laser sees what it flies over
-  h.scan({0, 0, 0}, {0, 0, 0}, false);
+  h.scan({0, 0, 0}, frame, false);
   for (int i = 1; i <= 10; ++i) {
     const Pose2 p{0.25f * static_cast<float>(i), 0.1f * static_cast<float>(i), 0.35f * static_cast<float>(i)};
-    h.scan(p, p, false);
+    h.scan(p, frame.compose(p), false);
   }
 }
 
@@ -135,6 +136,32 @@ TEST(HomeFix, TheSameViewAskedTwiceConfirmsNothing) {
   ASSERT_TRUE(h.fix->take(out));
   EXPECT_NEAR(out.pose.x, turned.x, 0.06f);
   EXPECT_NEAR(out.pose.y, turned.y, 0.06f);
+}
+
+// Two fixes agree when they put the vehicle at the same pose, wherever the frame's origin is.
+// Home 9 m from it, the estimate's heading turned 0.03 rad between the two searches (about the
+// vehicle, as the filter's heading drifts): both fixes are right, but as transforms of the
+// frame they differ by 0.03 rad about a point 9 m from the origin, a quarter of a metre there.
+TEST(HomeFix, FixesAgreeOnTheVehiclesPoseNotOnTheFramesOrigin) {
+  Harness h;
+  const Pose2 frame{8.0f, -3.0f, 0.4f};
+  first_minute(h, frame);
+  h.t = h.t + Duration::from_s(h.config.reference_window_s);
+  const Pose2 drift{1.2f, -0.9f, 0.08f};
+  const Pose2 heading_drift{0.0f, 0.0f, 0.03f};
+  PoseMeasurement2 out;
+  Pose2 truth{1.6f, 0.4f, 2.6f};
+  for (int i = 0; i < 30 && !h.fix->take(out); ++i) {
+    truth.x -= 0.04f;
+    const Pose2 believed = frame.compose(drift).compose(truth);
+    h.scan(truth, h.fix->counters().searches == 0 ? believed : believed.compose(heading_drift), true);
+  }
+  ASSERT_EQ(h.fix->counters().confirmed, 1u);
+  EXPECT_EQ(h.fix->counters().searches, 2u);  // the second search confirms the first
+  const Pose2 right = frame.compose(truth);
+  EXPECT_NEAR(out.pose.x, right.x, 0.06f);
+  EXPECT_NEAR(out.pose.y, right.y, 0.06f);
+  EXPECT_NEAR(wrap_angle(out.pose.theta - right.theta), 0.0f, 0.02f);
 }
 
 // Two searches that each find a fix, but not the same one, confirm nothing.

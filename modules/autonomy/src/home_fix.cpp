@@ -103,8 +103,13 @@ void HomeFix::background_step() {
     } else {
       ++counters_.found;
       const Pose2 correction = r.pose.compose(in->pose.inverse());
-      const Pose2 diff = correction.compose(pending_.inverse());
-      const bool agrees = have_pending_ && std::hypot(diff.x, diff.y) <= config_.agree_m && std::fabs(diff.theta) <= config_.agree_rad;
+      // Judged where the vehicle is, not at the frame's origin: the earlier correction carried
+      // to this guess against this fix. Compared as transforms, a heading 0.02 rad apart is
+      // 0.16 m apart at a home 8 m from the origin, though both fixes put the vehicle within a
+      // centimetre of the same pose.
+      const Pose2 predicted = pending_.compose(in->pose);
+      const bool agrees = have_pending_ && std::hypot(predicted.x - r.pose.x, predicted.y - r.pose.y) <= config_.agree_m &&
+                          std::fabs(wrap_angle(predicted.theta - r.pose.theta)) <= config_.agree_rad;
       const bool new_view = std::hypot(in->pose.x - pending_view_.x, in->pose.y - pending_view_.y) >= config_.view_change_m ||
                             std::fabs(wrap_angle(in->pose.theta - pending_view_.theta)) >= config_.view_change_rad;
       if (agrees && new_view) {

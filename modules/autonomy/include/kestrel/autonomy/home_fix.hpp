@@ -16,8 +16,9 @@
 // fix for NavFilter::apply_correction. Level 3 (background_step()) draws and searches
 // (scan_matching/relocaliser.hpp). One slot each way; neither side waits.
 //
-// A fix is handed back only when two searches in a row agree on the correction within agree_m
-// and agree_rad, on scans taken from viewpoints at least view_change_m or view_change_rad
+// A fix is handed back only when two searches in a row agree within agree_m and agree_rad (the
+// first's correction, applied to the second's guess, puts the vehicle where the second's fix
+// does), on scans taken from viewpoints at least view_change_m or view_change_rad
 // apart: a wrong fix on one view's likeness to another place is not likely to be the same
 // wrong fix from another view, while the same view asked twice answers the same. (A vehicle
 // in the room north of gt-building's home, a metre from the corridor's wall and facing it,
@@ -50,7 +51,7 @@ struct HomeFixConfig {
   float reference_turn_rad = 1.0f;     // ...or turned this much from it
   float radius_m = 4.0f;               // searched within this of home, flying home
   float period_s = 1.0f;               // at most one search per this long
-  float agree_m = 0.15f;               // two searches in a row agree on the correction within
+  float agree_m = 0.15f;               // two searches in a row agree on the vehicle's pose within
   float agree_rad = 0.05f;
   float view_change_m = 0.3f;          // ...from scans taken this far apart
   float view_change_rad = 0.3f;        // ...or turned this much
