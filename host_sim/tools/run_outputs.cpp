@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "kestrel/output/json_writer.hpp"
 #include "kestrel/output/tum_writer.hpp"
@@ -30,6 +31,12 @@ Status write_metrics(const std::string& path, const SimOptions& opt, Simulation&
     j.number("z_m", c.position_m.z());
     j.number("depth_m", c.depth_m);
     j.integer("world_line", c.line);
+    // Whose contact it was: the estimator's when the estimate was metres off, else the guidance's.
+    if (const std::optional<EstimateError> e = mission.estimate_error_at(c.stamp)) {
+      j.number("estimate_err_x_m", e->x_m);
+      j.number("estimate_err_y_m", e->y_m);
+      j.number("estimate_err_m", std::hypot(e->x_m, e->y_m));
+    }
     j.end_object();
   }
   j.end_array();

@@ -398,6 +398,26 @@ void AutonomyMission::trace(sim::Simulation& sim) {
   trace_.write(m, f, have_scan ? &at_scan : nullptr, have_nav ? &at_nav : nullptr);
 }
 
+std::optional<sim::EstimateError> estimate_error_at(const std::vector<EstimateSample>& samples, double t_s,
+                                                    double max_age_s) {
+  // Newest first: a contact ends the flight, so the sample sought is at the end. Samples come
+  // in the filter's stamp order; the newest at or before t_s is taken even if one is not.
+  const EstimateSample* best = nullptr;
+  for (auto it = samples.rbegin(); it != samples.rend(); ++it) {
+    if (it->t_s > t_s) continue;
+    if (best == nullptr || it->t_s > best->t_s) best = &*it;
+    if (t_s - it->t_s > max_age_s) break;
+  }
+  if (best == nullptr || !(t_s - best->t_s <= max_age_s)) return std::nullopt;
+  const Eigen::Vector3d e = best->est_pos - best->true_pos;
+  if (!e.head<2>().allFinite()) return std::nullopt;
+  return sim::EstimateError{e.x(), e.y()};
+}
+
+std::optional<sim::EstimateError> AutonomyMission::estimate_error_at(TimeUs t) const {
+  return flight::estimate_error_at(samples_, t.seconds(), 0.5);
+}
+
 double AutonomyMission::hover_rms_m() const {
   return hover_n_ == 0 ? std::nan("") : std::sqrt(hover_sq_sum_ / static_cast<double>(hover_n_));
 }

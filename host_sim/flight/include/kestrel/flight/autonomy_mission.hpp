@@ -61,6 +61,11 @@ struct EstimateSample {
   double est_yaw, true_yaw;
 };
 
+// The estimate's error (estimate minus truth) of the newest sample at or before `t_s`, if that
+// sample is at most `max_age_s` older: a contact the filter saw no scan near is not put on it.
+std::optional<sim::EstimateError> estimate_error_at(const std::vector<EstimateSample>& samples, double t_s,
+                                                    double max_age_s);
+
 class AutonomyMission final : public sim::Mission {
  public:
   explicit AutonomyMission(FlightOptions options);
@@ -71,6 +76,8 @@ class AutonomyMission final : public sim::Mission {
   sim::MissionState tick(sim::Simulation& sim) override;
   Duration tick_period() const override { return Duration::from_ms(1); }
   void metrics(sim::MissionMetrics& out) const override;
+  // From the samples taken at every scan: the newest within half a second before `t`.
+  std::optional<sim::EstimateError> estimate_error_at(TimeUs t) const override;
   std::string failure() const override { return failure_; }
   Status write_outputs(const std::string& out_dir) const override;
   Status open_scan_trace(const std::string& path) override { return trace_.open(path); }

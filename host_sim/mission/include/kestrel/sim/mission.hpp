@@ -7,6 +7,7 @@
 // To add a mission: implement this interface and add one row to the table in
 // mission_registry.cpp (name, one-line summary, factory).
 #include "kestrel/output/canvas.hpp"
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,12 @@ enum class MissionState : uint8_t { kRunning, kDone, kFailed };
 // Extra numbers a mission adds to metrics.json (name, value), e.g. {"hover_rms_m", 0.06}.
 using MissionMetrics = std::vector<std::pair<std::string, double>>;
 
+// The mission's horizontal position estimate minus the truth, in the world frame.
+struct EstimateError {
+  double x_m = 0;
+  double y_m = 0;
+};
+
 class Mission {
  public:
   virtual ~Mission() = default;
@@ -36,6 +43,10 @@ class Mission {
   virtual Duration tick_period() const { return Duration::from_ms(10); }
   // Mission-specific metrics, appended to the run's metrics.
   virtual void metrics(MissionMetrics& /*out*/) const {}
+  // The estimate's error at `t`, for metrics.json's contacts: a contact with the estimate
+  // metres off is the estimator's, one with it on the truth the guidance's. Nothing (the
+  // default) when the mission keeps no estimate, or had none shortly before `t`.
+  virtual std::optional<EstimateError> estimate_error_at(TimeUs /*t*/) const { return std::nullopt; }
   // A one-line reason after kFailed.
   virtual std::string failure() const { return {}; }
   // A per-scan trace (kestrel-sim --trace-scans): a mission that runs a scan matcher writes
