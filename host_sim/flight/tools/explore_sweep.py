@@ -3,10 +3,12 @@
 
 Runs `kestrel-sim --mission explore` for every world x laser x explorer x seed (at most
 --jobs at a time, under nice), keeps each run's outputs in OUT/<world>-<laser>-<explorer>-s<seed>,
-and prints three markdown tables: one row per run (with the first contact's place and time);
+and prints four markdown tables: one row per run (with the first contact's place and time);
 one row per (world, laser, explorer) with the aggregates the README reports (runs with every
 room entered, collisions, median t_all_rooms_s, mean coverage and coverage at fixed times from
-coverage_vs_time); and per (world, laser, explorer) how many runs never entered each room.
+coverage_vs_time); per (world, laser, explorer) how many runs never entered each room; and
+per (world, laser, explorer) the contacts, split by how far off the estimate was at each
+(metrics.json's contacts[].estimate_err_m: within 0.5 m, or more).
 
 Standard library only. Runs already present in OUT (metrics.json exists) are not re-run, so
 an interrupted sweep can be resumed and a table re-printed with --seeds and no runs.
@@ -203,6 +205,21 @@ def main():
     for (w, l, e), ms in groups.items():
         ms = [m for m in ms if m is not None]
         print(f"| {w} | {l} | {e} | {rooms_missed(ms)} |")
+    print()
+    # Whose contacts: with the estimate metres off the vehicle flew where it thought it was
+    # clear (the estimator's); with the estimate on the truth the guidance brought it there.
+    print("| world | laser | explorer | contacts | estimate within 0.5 m | estimate 0.5 m or more off | "
+          "estimate's error at each, m |")
+    print("|---|---|---|---|---|---|---|")
+    for (w, l, e), ms in groups.items():
+        contacts = [c for m in ms if m is not None for c in (m.get("contacts") or [])]
+        errs = [c.get("estimate_err_m") for c in contacts]
+        known = sorted(x for x in errs if x is not None)
+        on = sum(1 for x in known if x < 0.5)
+        listed = ", ".join(f"{x:.2f}" for x in known) or "-"
+        if len(known) < len(errs):
+            listed += f" ({len(errs) - len(known)} unknown)"
+        print(f"| {w} | {l} | {e} | {len(contacts)} | {on} | {len(known) - on} | {listed} |")
     missing = sum(1 for _, m in results if m is None)
     if missing:
         print(f"{missing} run(s) left no metrics.json: see stderr.txt in their directories", file=sys.stderr)

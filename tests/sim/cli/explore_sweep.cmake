@@ -1,5 +1,6 @@
 # host_sim/flight/tools/explore_sweep.py, whose tables the README quotes, on a tiny sweep flown
-# by the real kestrel-sim: its three tables (per run, per group, rooms never entered) agree
+# by the real kestrel-sim: its four tables (per run, per group, rooms never entered, contacts by
+# the estimate's error at each) agree
 # with the runs' metrics.json cell by cell (a time to all rooms, which flights this short do
 # not reach, only by its form; explore_sweep_groups.cmake checks the group columns that need
 # one on runs whose outcome it writes). iarc-arena's glass window, which the laser does not see, stops
@@ -19,7 +20,7 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "explore_sweep.py failed (${rc}):\n${tables}${err}")
 endif()
 
-# The tables, separated by blank lines: table_0, table_1, table_2 hold their header and rows.
+# The tables, separated by blank lines: table_0 .. table_3 hold their header and rows.
 string(STRIP "${tables}" text)
 string(REPLACE "\n" ";" lines "${text}")
 set(t 0)
@@ -30,8 +31,8 @@ foreach(line IN LISTS lines)
     list(APPEND table_${t} "${line}")
   endif()
 endforeach()
-if(NOT t EQUAL 2)
-  message(FATAL_ERROR "expected three tables, got ${t} blank lines:\n${tables}")
+if(NOT t EQUAL 3)
+  message(FATAL_ERROR "expected four tables, got ${t} blank lines:\n${tables}")
 endif()
 
 # A row's cells as a list, checked to be as many as its table's columns.
@@ -105,11 +106,12 @@ endif()
 set(row 0)
 set(contacts_seen 0)
 foreach(w IN LISTS worlds)
-  foreach(v all free clean fin home near cov pos vel t_all t90 runaways)
+  foreach(v all free clean fin home near cov pos vel t_all t90 runaways contacts on_estimate)
     set(${v}_${w} 0)
   endforeach()
   set(best_ms_${w} "")  # the earliest all-rooms time of a run that touched nothing, in ms
   set(rooms_${w} "")
+  set(errs_${w} "")  # the estimate's error at each contact, in mm
   foreach(s IN LISTS seeds)
     math(EXPR row "${row} + 1")
     list(GET table_0 ${row} line)
@@ -200,6 +202,37 @@ foreach(w IN LISTS worlds)
         math(EXPR digits "${decimals} + 1")
         scaled(${value} ${digits} value)
         expect_near("${run}: first contact ${field}" "${p}" ${decimals} ${value})
+      endforeach()
+    endif()
+
+    # Every contact of an explore flight carries the estimate's error there (estimate minus
+    # truth), whose length is that of its two components.
+    math(EXPR contacts_${w} "${contacts_${w}} + ${n_contacts}")
+    if(n_contacts GREATER 0)
+      math(EXPR last_contact "${n_contacts} - 1")
+      foreach(i RANGE 0 ${last_contact})
+        string(JSON err ERROR_VARIABLE no_err GET "${json}" contacts ${i} estimate_err_m)
+        if(no_err)
+          message(FATAL_ERROR "${run}: contact ${i} has no estimate_err_m: ${no_err}")
+        endif()
+        scaled(${err} 3 err_mm)
+        set(sum_sq 0)
+        foreach(axis x y)
+          string(JSON part GET "${json}" contacts ${i} estimate_err_${axis}_m)
+          string(REGEX REPLACE "^-" "" part "${part}")
+          scaled(${part} 3 part_mm)
+          math(EXPR sum_sq "${sum_sq} + ${part_mm} * ${part_mm}")
+        endforeach()
+        # Each value rounded down to a millimetre: the squares agree within 2 (err + 1) each.
+        math(EXPR gap "${err_mm} * ${err_mm} - ${sum_sq}")
+        math(EXPR slack "4 * (${err_mm} + 1)")
+        if(gap GREATER slack OR gap LESS -${slack})
+          message(FATAL_ERROR "${run}: contact ${i}: estimate_err_m ${err} is not the length of its components")
+        endif()
+        list(APPEND errs_${w} ${err_mm})
+        if(err_mm LESS 500)
+          math(EXPR on_estimate_${w} "${on_estimate_${w}} + 1")
+        endif()
       endforeach()
     endif()
 
@@ -366,6 +399,41 @@ foreach(w IN LISTS worlds)
   list(SORT got)
   list(SORT want)
   expect("${g}: rooms never entered (sorted)" "${got}" "${want}")
+endforeach()
+
+# Table 3: per group, the contacts, how many with the estimate within 0.5 m and how many
+# more off, and the estimate's error at each, smallest first.
+list(GET table_3 0 header)
+expect("contacts header" "${header}"
+       "| world | laser | explorer | contacts | estimate within 0.5 m | estimate 0.5 m or more off | estimate's error at each, m |")
+list(LENGTH table_3 rows)
+if(NOT rows EQUAL want_rows)
+  message(FATAL_ERROR "contacts table: ${rows} lines, expected a header and one row per world:\n${tables}")
+endif()
+set(row 0)
+foreach(w IN LISTS worlds)
+  math(EXPR row "${row} + 1")
+  list(GET table_3 ${row} line)
+  cells("${line}" 7 c)
+  set(g "${w} ${laser} ${explorer}")
+  math(EXPR off "${contacts_${w}} - ${on_estimate_${w}}")
+  list(SUBLIST c 0 6 got)
+  expect("${g}: contacts" "${got}" "${w};${laser};${explorer};${contacts_${w}};${on_estimate_${w}};${off}")
+  list(GET c 6 printed)
+  if(contacts_${w} EQUAL 0)
+    expect("${g}: errors at the contacts" "${printed}" "-")
+  else()
+    string(REPLACE ", " ";" got "${printed}")
+    list(SORT errs_${w} COMPARE NATURAL)
+    list(LENGTH got n_got)
+    if(NOT n_got EQUAL contacts_${w})
+      message(FATAL_ERROR "${g}: errors at the contacts '${printed}', expected ${contacts_${w}} of them")
+    endif()
+    foreach(p IN LISTS got)
+      list(POP_FRONT errs_${w} want)
+      expect_near("${g}: the estimate's error at a contact" "${p}" 2 ${want})
+    endforeach()
+  endif()
 endforeach()
 
 # Resumable: with every run kept, no simulator is needed, none flies again (its complaints would

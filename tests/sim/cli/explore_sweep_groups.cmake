@@ -7,7 +7,7 @@ set(dir ${OUT}/gt-building-utm30lx-blend-s)
 file(REMOVE_RECURSE ${OUT})
 # seed/rooms entered (of 7)/time to all rooms (null: never)/collisions/returned home/estimate
 # runaways/final distance from take-off (m)
-set(runs 1/7/650.2/0/true/1/0.3 2/7/612.4/1/false/0/0.2 3/7/700.5/0/true/2/0.9 4/6/null/0/false/0/0.5 5/7/800/0/false/1/1.4)
+set(runs 1/7/650.2/0/true/1/0.3 2/7/612.4/3/false/0/0.2 3/7/700.5/0/true/2/0.9 4/6/null/0/false/0/0.5 5/7/800/0/false/1/1.4)
 foreach(run IN LISTS runs)
   string(REPLACE "/" ";" fields "${run}")
   list(GET fields 0 seed)
@@ -20,7 +20,11 @@ foreach(run IN LISTS runs)
   set(contacts "[]")
   set(finished true)
   if(hits GREATER 0)
-    set(contacts "[{\"x_m\": 3.0, \"y_m\": 7.0, \"t_s\": 900.0}]")
+    # Three contacts: the estimate 2.34 m off at the first, 0.12 m at the second, unknown at
+    # the third (a mission without an estimate).
+    string(CONCAT contacts "[{\"x_m\": 3.0, \"y_m\": 7.0, \"t_s\": 900.0, \"estimate_err_m\": 2.34}, "
+                           "{\"x_m\": 3.1, \"y_m\": 7.0, \"t_s\": 900.5, \"estimate_err_m\": 0.12}, "
+                           "{\"x_m\": 3.2, \"y_m\": 7.0, \"t_s\": 901.0}]")
     set(finished false)
   endif()
   file(WRITE ${dir}${seed}/metrics.json
@@ -48,4 +52,11 @@ set(want "| gt-building | utm30lx | blend | 5 | 4/5 | 4/5 | 3/5 | 4/5 | 11:15 | 
 string(FIND "${tables}" "${want}" at)
 if(at EQUAL -1)
   message(FATAL_ERROR "group row: expected\n${want}\nin\n${tables}")
+endif()
+
+# The contacts by the estimate's error at each: one within 0.5 m, one more off, one unknown.
+set(want "| gt-building | utm30lx | blend | 3 | 1 | 1 | 0.12, 2.34 (1 unknown) |")
+string(FIND "${tables}" "${want}" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "contacts row: expected\n${want}\nin\n${tables}")
 endif()
