@@ -31,7 +31,8 @@ Status write_metrics(const std::string& path, const SimOptions& opt, Simulation&
     j.number("z_m", c.position_m.z());
     j.number("depth_m", c.depth_m);
     j.integer("world_line", c.line);
-    // Whose contact it was: the estimator's when the estimate was metres off, else the guidance's.
+    // Whose contact it was: the estimator's when the estimate was metres off; else not the
+    // estimator's (the guidance's, or a surface the simulated laser does not show).
     if (const std::optional<EstimateError> e = mission.estimate_error_at(c.stamp)) {
       j.number("estimate_err_x_m", e->x_m);
       j.number("estimate_err_y_m", e->y_m);

@@ -22,9 +22,9 @@ EstimateSample sample(double t_s, double est_x, double true_x, double est_y = 0.
 TEST(EstimateErrorAtContact, TakesTheNewestSampleAtOrBeforeTheContact) {
   const std::vector<EstimateSample> s{sample(1.0, 5.0, 4.0), sample(1.1, 6.0, 4.0, 2.0, 2.5),
                                       sample(1.2, 9.0, 4.0)};
-  const std::optional<sim::EstimateError> e = estimate_error_at(s, 1.15, 0.5);
+  const std::optional<sim::EstimateError> e = estimate_error_at(s, 1.19, 0.5);
   ASSERT_TRUE(e.has_value());
-  EXPECT_DOUBLE_EQ(e->x_m, 2.0);  // the 1.1 s sample's, not the later 1.2 s one's
+  EXPECT_DOUBLE_EQ(e->x_m, 2.0);  // the 1.1 s sample's, not the nearer but later 1.2 s one's
   EXPECT_DOUBLE_EQ(e->y_m, -0.5);
   const std::optional<sim::EstimateError> at = estimate_error_at(s, 1.2, 0.5);
   ASSERT_TRUE(at.has_value());
@@ -36,15 +36,29 @@ TEST(EstimateErrorAtContact, NothingBeforeTheFirstSampleOrLongAfterTheLast) {
   EXPECT_FALSE(estimate_error_at(s, 0.9, 0.5).has_value());
   EXPECT_FALSE(estimate_error_at(s, 2.6, 0.5).has_value());  // the filter stopped 0.6 s before
   EXPECT_TRUE(estimate_error_at(s, 2.4, 0.5).has_value());
+  EXPECT_TRUE(estimate_error_at(s, 2.5, 0.5).has_value());  // exactly max_age_s old still counts
   EXPECT_FALSE(estimate_error_at({}, 1.0, 0.5).has_value());
 }
 
+TEST(EstimateErrorAtContact, TheMissionsAgeLimitIsSeveralScans) {
+  // Scans come every 25 ms (UTM-30LX) to 100 ms (URG-04LX): the limit must outlast a few
+  // missed ones and still not reach back to a different moment of the flight.
+  EXPECT_GE(kContactSampleMaxAgeS, 0.3);
+  EXPECT_LE(kContactSampleMaxAgeS, 1.0);
+}
+
 TEST(EstimateErrorAtContact, OutOfOrderStampsStillGiveTheNewestBeforeTheContact) {
-  // A sample recorded after a newer one (a stamp that went back) is not taken for the newest.
+  // A sample recorded after a newer one (a stamp that went back) is not taken for the newest,
+  // and neither a stale one nor a NaN-stamped one at the end hides an in-age sample before it.
   const std::vector<EstimateSample> s{sample(1.0, 5.0, 4.0), sample(1.3, 7.0, 4.0), sample(1.2, 9.0, 4.0)};
   const std::optional<sim::EstimateError> e = estimate_error_at(s, 1.35, 0.5);
   ASSERT_TRUE(e.has_value());
   EXPECT_DOUBLE_EQ(e->x_m, 3.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<EstimateSample> tail{sample(1.3, 7.0, 4.0), sample(0.1, 9.0, 4.0), sample(nan, 9.0, 4.0)};
+  const std::optional<sim::EstimateError> t = estimate_error_at(tail, 1.35, 0.5);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_DOUBLE_EQ(t->x_m, 3.0);
 }
 
 TEST(EstimateErrorAtContact, ANonFiniteEstimateGivesNothing) {

@@ -400,14 +400,12 @@ void AutonomyMission::trace(sim::Simulation& sim) {
 
 std::optional<sim::EstimateError> estimate_error_at(const std::vector<EstimateSample>& samples, double t_s,
                                                     double max_age_s) {
-  // Newest first: a contact ends the flight, so the sample sought is at the end. Samples come
-  // in the filter's stamp order; the newest at or before t_s is taken even if one is not.
+  // A whole pass, not the newest few: stamps come in order today, and a stamp that went back
+  // (or a NaN one) must not hide the sample sought. A contact ends the flight, so this runs
+  // once or twice per run.
   const EstimateSample* best = nullptr;
-  for (auto it = samples.rbegin(); it != samples.rend(); ++it) {
-    if (it->t_s > t_s) continue;
-    if (best == nullptr || it->t_s > best->t_s) best = &*it;
-    if (t_s - it->t_s > max_age_s) break;
-  }
+  for (const EstimateSample& s : samples)
+    if (std::isfinite(s.t_s) && s.t_s <= t_s && (best == nullptr || s.t_s > best->t_s)) best = &s;
   if (best == nullptr || !(t_s - best->t_s <= max_age_s)) return std::nullopt;
   const Eigen::Vector3d e = best->est_pos - best->true_pos;
   if (!e.head<2>().allFinite()) return std::nullopt;
@@ -415,7 +413,7 @@ std::optional<sim::EstimateError> estimate_error_at(const std::vector<EstimateSa
 }
 
 std::optional<sim::EstimateError> AutonomyMission::estimate_error_at(TimeUs t) const {
-  return flight::estimate_error_at(samples_, t.seconds(), 0.5);
+  return flight::estimate_error_at(samples_, t.seconds(), kContactSampleMaxAgeS);
 }
 
 double AutonomyMission::hover_rms_m() const {

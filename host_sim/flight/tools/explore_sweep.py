@@ -207,7 +207,8 @@ def main():
         print(f"| {w} | {l} | {e} | {rooms_missed(ms)} |")
     print()
     # Whose contacts: with the estimate metres off the vehicle flew where it thought it was
-    # clear (the estimator's); with the estimate on the truth the guidance brought it there.
+    # clear (the estimator's); with the estimate on the truth, not the estimator's (the
+    # guidance's, or a surface the simulated laser does not show, such as a jamb seen edge-on).
     print("| world | laser | explorer | contacts | estimate within 0.5 m | estimate 0.5 m or more off | "
           "estimate's error at each, m |")
     print("|---|---|---|---|---|---|---|")
@@ -216,9 +217,10 @@ def main():
         errs = [c.get("estimate_err_m") for c in contacts]
         known = sorted(x for x in errs if x is not None)
         on = sum(1 for x in known if x < 0.5)
-        listed = ", ".join(f"{x:.2f}" for x in known) or "-"
+        parts = [", ".join(f"{x:.2f}" for x in known)] if known else []
         if len(known) < len(errs):
-            listed += f" ({len(errs) - len(known)} unknown)"
+            parts.append(f"({len(errs) - len(known)} unknown)")
+        listed = " ".join(parts) or "-"
         print(f"| {w} | {l} | {e} | {len(contacts)} | {on} | {len(known) - on} | {listed} |")
     missing = sum(1 for _, m in results if m is None)
     if missing:

@@ -7,7 +7,7 @@ set(dir ${OUT}/gt-building-utm30lx-blend-s)
 file(REMOVE_RECURSE ${OUT})
 # seed/rooms entered (of 7)/time to all rooms (null: never)/collisions/returned home/estimate
 # runaways/final distance from take-off (m)
-set(runs 1/7/650.2/0/true/1/0.3 2/7/612.4/3/false/0/0.2 3/7/700.5/0/true/2/0.9 4/6/null/0/false/0/0.5 5/7/800/0/false/1/1.4)
+set(runs 1/7/650.2/0/true/1/0.3 2/7/612.4/5/false/0/0.2 3/7/700.5/0/true/2/0.9 4/6/null/0/false/0/0.5 5/7/800/0/false/1/1.4)
 foreach(run IN LISTS runs)
   string(REPLACE "/" ";" fields "${run}")
   list(GET fields 0 seed)
@@ -20,10 +20,12 @@ foreach(run IN LISTS runs)
   set(contacts "[]")
   set(finished true)
   if(hits GREATER 0)
-    # Three contacts: the estimate 2.34 m off at the first, 0.12 m at the second, unknown at
-    # the third (a mission without an estimate).
+    # Five contacts: the estimate 2.34 m off, 0.12 m, either side of the 0.5 m split (0.499
+    # within, 0.5 not), and unknown (a mission without an estimate).
     string(CONCAT contacts "[{\"x_m\": 3.0, \"y_m\": 7.0, \"t_s\": 900.0, \"estimate_err_m\": 2.34}, "
                            "{\"x_m\": 3.1, \"y_m\": 7.0, \"t_s\": 900.5, \"estimate_err_m\": 0.12}, "
+                           "{\"x_m\": 3.1, \"y_m\": 7.0, \"t_s\": 900.6, \"estimate_err_m\": 0.499}, "
+                           "{\"x_m\": 3.1, \"y_m\": 7.0, \"t_s\": 900.7, \"estimate_err_m\": 0.5}, "
                            "{\"x_m\": 3.2, \"y_m\": 7.0, \"t_s\": 901.0}]")
     set(finished false)
   endif()
@@ -54,8 +56,9 @@ if(at EQUAL -1)
   message(FATAL_ERROR "group row: expected\n${want}\nin\n${tables}")
 endif()
 
-# The contacts by the estimate's error at each: one within 0.5 m, one more off, one unknown.
-set(want "| gt-building | utm30lx | blend | 3 | 1 | 1 | 0.12, 2.34 (1 unknown) |")
+# The contacts by the estimate's error at each: two within 0.5 m (0.499 printed as 0.50), two
+# at 0.5 m or more, one unknown.
+set(want "| gt-building | utm30lx | blend | 5 | 2 | 2 | 0.12, 0.50, 0.50, 2.34 (1 unknown) |")
 string(FIND "${tables}" "${want}" at)
 if(at EQUAL -1)
   message(FATAL_ERROR "contacts row: expected\n${want}\nin\n${tables}")

@@ -63,6 +63,8 @@ struct EstimateSample {
 
 // The estimate's error (estimate minus truth) of the newest sample at or before `t_s`, if that
 // sample is at most `max_age_s` older: a contact the filter saw no scan near is not put on it.
+// Samples are taken every scan (25-100 ms): half a second without one is several scans lost.
+inline constexpr double kContactSampleMaxAgeS = 0.5;
 std::optional<sim::EstimateError> estimate_error_at(const std::vector<EstimateSample>& samples, double t_s,
                                                     double max_age_s);
 
@@ -76,7 +78,7 @@ class AutonomyMission final : public sim::Mission {
   sim::MissionState tick(sim::Simulation& sim) override;
   Duration tick_period() const override { return Duration::from_ms(1); }
   void metrics(sim::MissionMetrics& out) const override;
-  // From the samples taken at every scan: the newest within half a second before `t`.
+  // From the samples taken at every scan: the newest within kContactSampleMaxAgeS before `t`.
   std::optional<sim::EstimateError> estimate_error_at(TimeUs t) const override;
   std::string failure() const override { return failure_; }
   Status write_outputs(const std::string& out_dir) const override;

@@ -44,8 +44,9 @@ class Mission {
   // Mission-specific metrics, appended to the run's metrics.
   virtual void metrics(MissionMetrics& /*out*/) const {}
   // The estimate's error at `t`, for metrics.json's contacts: a contact with the estimate
-  // metres off is the estimator's, one with it on the truth the guidance's. Nothing (the
-  // default) when the mission keeps no estimate, or had none shortly before `t`.
+  // metres off is the estimator's; one with it on the truth is not (the guidance's, or a
+  // surface the simulated laser does not show). Nothing (the default) when the mission keeps
+  // no estimate, or had none shortly before `t`.
   virtual std::optional<EstimateError> estimate_error_at(TimeUs /*t*/) const { return std::nullopt; }
   // A one-line reason after kFailed.
   virtual std::string failure() const { return {}; }
