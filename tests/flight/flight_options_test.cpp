@@ -122,7 +122,7 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "yes"}}}, mem), "");
   // A run-out retracing the path flown.
   FlightOptions retrace;
-  EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kOff);
+  EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kGuarded);  // the default
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "on"}}}, retrace), "");
   EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kAlways);
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "guarded"}}}, retrace), "");

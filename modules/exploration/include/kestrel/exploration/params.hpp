@@ -123,10 +123,13 @@ struct SrtParams {
                                           // return it starts within the clearance of, and an open
                                           // sector's frontier with no path from its node goes to
                                           // an ancestor (srt_star_planner.hpp; not in paper 002)
-  RetraceMode retrace = RetraceMode::kOff;  // a tree that runs out with little unflown in reach
-                                            // first flies back along the path it came by to
-                                            // where more is (srt_star_planner.hpp; not in
-                                            // paper 002)
+  RetraceMode retrace = RetraceMode::kGuarded;  // a tree that runs out with little unflown in
+                                                // reach first flies back along the path it came
+                                                // by to where more is (srt_star_planner.hpp; not
+                                                // in paper 002). Guarded since session 41: the
+                                                // URG-04LX's gt-building flights through every
+                                                // room without a contact 125 of 150 against 107
+                                                // (EXPERIMENTS.md, *Retracing the path flown*)
   RetraceTarget retrace_target = RetraceTarget::kUnflown;  // what draws it back (and, when
                                                            // none is left, ends exploration)
   SteerUnflown steer = SteerUnflown::kAfterRestart;  // which draws face the building not yet
