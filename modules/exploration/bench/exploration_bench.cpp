@@ -7,8 +7,10 @@
 // on the stack); the timed code itself never allocates (see the alloc_guard tests).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "kestrel/core/messages.hpp"
 #include "kestrel/exploration/approach_limiter.hpp"
@@ -18,6 +20,7 @@
 #include "kestrel/exploration/srt_star_planner.hpp"
 #include "kestrel/exploration/unflown_bearings.hpp"
 #include "kestrel/exploration/visited_grid.hpp"
+#include "retrace_flight_out.hpp"
 #include "synthetic_world.hpp"
 
 namespace {
@@ -142,6 +145,60 @@ void srt_arrival_cycles(benchmark::State& state, uint16_t beams, double fov_deg,
   state.counters["arrival_done"] = done ? 1.0 : 0.0;
 }
 
+// A retrace with a nearly full path flown, guidance cycle by guidance cycle (default budget,
+// a guarded planner as the blend's): the flight out of retrace_flight_out.hpp (kLong, some 860
+// trail points), then a late waypoint in an enclosed place. Cycle 1 restarts the tree; the
+// fresh tree's arrival step, the trail's count (UnflownBearings at every kRetraceStride-th
+// point) and the retrace's start (two searches along the whole trail, each an item that may
+// begin just under the budget) run over the next cycles; once the planner is free, every cycle
+// puts the vehicle on its waypoint, so each is an arrival on the way back (the leg after the
+// next found along the trail). Each iteration starts from a copy of the planner before cycle 1,
+// the same work for every n: cycle n = `.../n` minus `.../n-1` (`kestrel-budget insns`).
+void srt_retrace_cycles(benchmark::State& state) {
+  const test::LaserModel urg = test::LaserModel::urg04lx();
+  auto before = std::make_unique<SrtStarPlanner>();
+  GuidanceParams g;
+  g.waypoint_time_limit_s = 1000.0f;
+  if (before->configure(SrtParams{}, g, /*guarded=*/true) != Status::kOk || !before->retraces_enabled()) {
+    state.SkipWithError("configure");
+    return;
+  }
+  LaserScan west_open = test::uniform_scan(urg, 1000);
+  for (int i = 0; i < west_open.beam_count; ++i)
+    if (std::fabs(west_open.angle_of(i)) < 0.6) west_open.range_mm[i] = range_code::kNoReturn;
+  const LaserScan enclosed = test::uniform_scan(urg, 1000);
+  const float west = static_cast<float>(M_PI);
+  bool fresh = false;
+  do {
+    (void)before->update({0, 0, west}, west_open, TimeUs{}, fresh);
+  } while (before->busy());
+  TimeUs t{};
+  const std::vector<Point2> out = test::retrace_flight_out(test::Outward::kLong);
+  for (const Point2& p : out) {
+    t += Duration::from_ms(100);
+    (void)before->update({p.x, p.y, 0}, enclosed, t, fresh);
+  }
+  const TimeUs late = TimeUs::from_s(1001);
+  auto planner = std::make_unique<SrtStarPlanner>();
+  int64_t calls = 0;
+  uint32_t most_work = 0;
+  for (auto _ : state) {
+    *planner = *before;
+    Pose2 at{out.back().x, out.back().y, 0};
+    for (calls = 0; calls < state.range(0); ++calls) {
+      if (calls > 0 && !planner->busy()) at = {planner->waypoint().x, planner->waypoint().y, 0};
+      benchmark::DoNotOptimize(planner->update(at, enclosed, late + Duration::from_ms(100 * calls), fresh));
+      most_work = std::max(most_work, planner->last_work());
+    }
+  }
+  state.counters["trail_points"] = static_cast<double>(before->trail().size());
+  state.counters["retracing"] = planner->mode() == PlannerMode::kRetrace ? 1.0 : 0.0;
+  state.counters["busy"] = planner->busy() ? 1.0 : 0.0;
+  state.counters["most_work_units"] = static_cast<double>(most_work);
+  state.counters["last_work_units"] = static_cast<double>(planner->last_work());
+  state.counters["restarts"] = static_cast<double>(planner->restarts());
+}
+
 // The sectors and their erosion alone (SectorScan::build), direction tables kept; and with the
 // tables rebuilt every time (two scans whose beam steps differ in the last bit, alternately):
 // these calibrate the work units of work_units.hpp on the Verdex.
@@ -194,6 +251,7 @@ void BM_SrtArrivalCyclesCorridorUrg(benchmark::State& s) {
 void BM_SrtArrivalCyclesUtm(benchmark::State& s) {
   srt_arrival_cycles(s, 1081, 270.0);
 }
+void BM_SrtRetraceCyclesUrg(benchmark::State& s) { srt_retrace_cycles(s); }
 void BM_SectorScanUrg(benchmark::State& s) {
   sector_scan(s, 682, 240.0, false);
 }
@@ -219,6 +277,21 @@ void BM_UnflownCount(benchmark::State& s) {
     benchmark::DoNotOptimize(bearings->count(*grid, {12.0f, 8.0f}));
     benchmark::DoNotOptimize(bearings->total());
   }
+}
+// Its worst case, which the work units must cover: every cell in reach inside the extent and
+// never flown, so each one is weighted and added (the count near a long flight's start, far
+// from where it ended: exploration/srt_retrace_cycles).
+void BM_UnflownCountAllUnflown(benchmark::State& s) {
+  auto grid = std::make_unique<VisitedGrid>();
+  grid->mark({12.0f, 26.0f});  // centres the grid (y -6..58), 14 m from the count
+  grid->widen_extent({-5.0f, -5.0f});  // inside the grid, so the extent takes them
+  grid->widen_extent({30.0f, 30.0f});
+  auto bearings = std::make_unique<UnflownBearings>();
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(bearings->count(*grid, {12.0f, 12.0f}));
+    benchmark::DoNotOptimize(bearings->total());
+  }
+  s.counters["total"] = static_cast<double>(bearings->total());
 }
 // The same count of the coarse grid's frontier (RetraceTarget::kFrontier, work::kFrontierCells):
 // the corridor and the rooms' first metres seen free, their walls marked, the rest unseen.
@@ -330,7 +403,9 @@ BENCHMARK(BM_SectorScanTablesUrg)->Name("exploration/sector_scan_new_tables/urg0
 BENCHMARK(BM_SrtArrivalCyclesUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682")->DenseRange(1, 8);
 BENCHMARK(BM_SrtArrivalCyclesCorridorUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682_corridor")->DenseRange(1, 16);
 BENCHMARK(BM_SrtArrivalCyclesUtm)->Name("exploration/srt_arrival_cycles/utm30lx_1081")->DenseRange(1, 8);
+BENCHMARK(BM_SrtRetraceCyclesUrg)->Name("exploration/srt_retrace_cycles/urg04lx_682")->DenseRange(0, 24);
 BENCHMARK(BM_UnflownCount)->Name("exploration/unflown_count");
+BENCHMARK(BM_UnflownCountAllUnflown)->Name("exploration/unflown_count_all_unflown");
 BENCHMARK(BM_FrontierCount)->Name("exploration/frontier_count");
 BENCHMARK(BM_GuidanceStepFrontierMarksUrg)->Name("exploration/guidance_step_frontier_marks/urg04lx_682");
 BENCHMARK(BM_GuidanceStepFrontierMarksUtm)->Name("exploration/guidance_step_frontier_marks/utm30lx_1081");

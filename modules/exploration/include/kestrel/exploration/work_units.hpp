@@ -30,8 +30,14 @@ inline constexpr uint32_t kTrailPoint = 4;           // a trail point's squared 
                                                      // as kRegionTest, whose arithmetic it is
 inline constexpr uint32_t kKeepOutTest = 20;         // a segment against the keep-out boxes
 inline constexpr uint32_t kFrontierScan = 16;        // frontiers per unit when picking one of a node
-inline constexpr uint32_t kGridCells = 3;            // visited-grid cells per unit: UnflownBearings::count,
-                                                     // 37.4 k for its 33 x 33 (exploration/unflown_count)
+inline constexpr uint32_t kGridCells = 2;            // visited-grid cells per unit: UnflownBearings::count,
+                                                     // charged 54.4 k for its 33 x 33; 49.0 k measured
+                                                     // with every cell in reach unflown inside the
+                                                     // extent (exploration/unflown_count_all_unflown;
+                                                     // 37.4 k at exploration/unflown_count). Charged
+                                                     // 36.3 k before session 42, the trail's count of a
+                                                     // retrace took 1.74 M in one cycle
+                                                     // (exploration/srt_retrace_cycles)
 inline constexpr uint32_t kFrontierCells = 1;        // ... counting frontier cells (up to five lookups
                                                      // each): 83.6 k measured (exploration/
                                                      // frontier_count), charged 109 k

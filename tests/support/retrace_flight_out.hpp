@@ -1,0 +1,46 @@
+#pragma once
+// The flight out that srt.retrace's tests and its benchmark give an SRT-Star planner, 0.25 m a
+// pose: east along y = 0 to x = 22, a narrow loop north (to y = 8, back down at x = 20 to
+// y = 0.4, every cell of it flown), then
+// Outward::kLawnMower: east again to x = 26 and a lawn-mower over x 26..38, y 0.4..10 with
+// lines 2 m apart, so that where it ends everything in reach is flown while the rooms beside the
+// start (y 2..10, x under 19) are not.
+// Outward::kLong: east to x = 23.5 and a lawn-mower over x 23.5..30.5, y -27..27 with lines 1 m
+// apart (more than kRetraceLoopM: no place is passed twice), some 860 trail points, the
+// history nearly full, inside the visited grid; the rooms beside the start reach y 27 and -27.
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "kestrel/core/se2.hpp"
+
+namespace kestrel::test {
+
+enum class Outward { kLawnMower, kLong };
+
+inline std::vector<Point2> retrace_flight_out(Outward shape = Outward::kLawnMower) {
+  const bool wide = shape == Outward::kLong;
+  const float x0 = wide ? 23.5f : 26.0f, pitch = wide ? 1.0f : 2.0f;
+  const float low = wide ? -27.0f : 0.4f, high = wide ? 27.0f : 10.0f;
+  const int lines = wide ? 8 : 7;
+  std::vector<Point2> corners = {{0, 0}, {22, 0}, {22, 8}, {20, 8}, {20, 0.4f}, {x0, 0.4f}};
+  for (int line = 0; line < lines; ++line) {
+    const float x = x0 + pitch * static_cast<float>(line);
+    const bool up = line % 2 == 0;
+    if (line > 0) corners.push_back({x, up ? low : high});
+    corners.push_back({x, up ? high : low});
+  }
+  std::vector<Point2> poses;
+  for (std::size_t c = 0; c + 1 < corners.size(); ++c) {
+    const Point2 a = corners[c], b = corners[c + 1];
+    const int steps = static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / 0.25f));
+    for (int k = 0; k < steps; ++k) {
+      const float f = static_cast<float>(k) / static_cast<float>(steps);
+      poses.push_back({a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)});
+    }
+  }
+  poses.push_back(corners.back());
+  return poses;
+}
+
+}  // namespace kestrel::test
