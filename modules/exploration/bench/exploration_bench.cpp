@@ -311,6 +311,17 @@ void BM_FrontierCount(benchmark::State& s) {
     benchmark::DoNotOptimize(bearings->total());
   }
 }
+// Its worst case: nothing seen in reach, so every cell tests its four neighbours (a cell walled
+// all round tests eight bits, but its neighbours, seen, test two).
+void BM_FrontierCountNothingSeen(benchmark::State& s) {
+  auto grid = std::make_unique<VisitedGrid>();
+  grid->mark({12.0f, 26.0f});  // centres the grid, 14 m from the count
+  auto bearings = std::make_unique<UnflownBearings>();
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(bearings->count(*grid, {12.0f, 12.0f}, RetraceTarget::kFrontier));
+    benchmark::DoNotOptimize(bearings->total());
+  }
+}
 // A retrace's search along the path flown (work::kTrailPoint): a full history, a lawn-mower of
 // FlownHistory::kCapacity points, searched from its first point to its last for a place no
 // point is near, so that every point is tested.
@@ -406,6 +417,7 @@ BENCHMARK(BM_SrtArrivalCyclesUtm)->Name("exploration/srt_arrival_cycles/utm30lx_
 BENCHMARK(BM_SrtRetraceCyclesUrg)->Name("exploration/srt_retrace_cycles/urg04lx_682")->DenseRange(0, 24);
 BENCHMARK(BM_UnflownCount)->Name("exploration/unflown_count");
 BENCHMARK(BM_UnflownCountAllUnflown)->Name("exploration/unflown_count_all_unflown");
+BENCHMARK(BM_FrontierCountNothingSeen)->Name("exploration/frontier_count_nothing_seen");
 BENCHMARK(BM_FrontierCount)->Name("exploration/frontier_count");
 BENCHMARK(BM_GuidanceStepFrontierMarksUrg)->Name("exploration/guidance_step_frontier_marks/urg04lx_682");
 BENCHMARK(BM_GuidanceStepFrontierMarksUtm)->Name("exploration/guidance_step_frontier_marks/utm30lx_1081");
