@@ -40,13 +40,6 @@ TEST(EstimateErrorAtContact, NothingBeforeTheFirstSampleOrLongAfterTheLast) {
   EXPECT_FALSE(estimate_error_at({}, 1.0, 0.5).has_value());
 }
 
-TEST(EstimateErrorAtContact, TheMissionsAgeLimitIsSeveralScans) {
-  // Scans come every 25 ms (UTM-30LX) to 100 ms (URG-04LX): the limit must outlast a few
-  // missed ones and still not reach back to a different moment of the flight.
-  EXPECT_GE(kContactSampleMaxAgeS, 0.3);
-  EXPECT_LE(kContactSampleMaxAgeS, 1.0);
-}
-
 TEST(EstimateErrorAtContact, OutOfOrderStampsStillGiveTheNewestBeforeTheContact) {
   // A sample recorded after a newer one (a stamp that went back) is not taken for the newest,
   // and neither a stale one nor a NaN-stamped one at the end hides an in-age sample before it.

@@ -5,8 +5,12 @@
 // allocation inside the loop. On the ARM presets (under qemu) the hover is shorter.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "kestrel/flight/autonomy_mission.hpp"
 #include "kestrel/sim/builtin_worlds.hpp"
@@ -28,6 +32,11 @@ struct Flight {
   sim::RunResult run;
   sim::MissionMetrics metrics;
   bool finished = false;
+  // The estimate's error as a contact would be given it (metrics.json contacts[]): at the middle
+  // sample's stamp, and just inside and just past the age limit after the last sample.
+  EstimateSample mid{};
+  std::optional<sim::EstimateError> at_mid, in_age_after_last, past_age_after_last;
+  double widest_sample_gap_s = 0, median_sample_gap_s = 0;
 };
 
 Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double hover_s, double delay_s = 0,
@@ -48,6 +57,21 @@ Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double h
   out.run = sim::run_mission(s, m, Duration::from_s(hover_s + 12));
   m.metrics(out.metrics);
   out.finished = m.stack().finished();
+  const std::vector<EstimateSample>& samples = m.samples();
+  if (!samples.empty()) {
+    out.mid = samples[samples.size() / 2];
+    out.at_mid = m.estimate_error_at(TimeUs::from_s(out.mid.t_s + 1e-4));  // 0.1 ms on: no rounding before it
+    const double last = samples.back().t_s;
+    out.in_age_after_last = m.estimate_error_at(TimeUs::from_s(last + kContactSampleMaxAgeS - 0.01));
+    out.past_age_after_last = m.estimate_error_at(TimeUs::from_s(last + kContactSampleMaxAgeS + 0.01));
+    std::vector<double> gaps;
+    for (std::size_t i = 1; i < samples.size(); ++i) gaps.push_back(samples[i].t_s - samples[i - 1].t_s);
+    if (!gaps.empty()) {
+      out.widest_sample_gap_s = *std::max_element(gaps.begin(), gaps.end());
+      std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
+      out.median_sample_gap_s = gaps[gaps.size() / 2];
+    }
+  }
   if (accel_noise_xy != nullptr) *accel_noise_xy = m.stack().filter().params().accel_noise_xy;
   return out;
 }
@@ -94,6 +118,20 @@ TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
   EXPECT_LE(metric(f.metrics, "hover_rms_m"), 0.12);
   EXPECT_LE(metric(f.metrics, "pos_err_mean_m"), 0.03);
   EXPECT_EQ(metric(f.metrics, "heap_allocs_after_arm"), 0);
+  // A contact is given the estimate's error from the mission's samples: the one at its time,
+  // none once the newest is older than the age limit. The limit outlasts every gap between
+  // samples in this flight and several of the slowest laser's scans (a sample comes with each),
+  // without reaching back seconds.
+  ASSERT_TRUE(f.at_mid.has_value());
+  EXPECT_DOUBLE_EQ(f.at_mid->x_m, f.mid.est_pos.x() - f.mid.true_pos.x());
+  EXPECT_DOUBLE_EQ(f.at_mid->y_m, f.mid.est_pos.y() - f.mid.true_pos.y());
+  EXPECT_LT(std::hypot(f.at_mid->x_m, f.at_mid->y_m), 0.1);
+  EXPECT_TRUE(f.in_age_after_last.has_value());
+  EXPECT_FALSE(f.past_age_after_last.has_value());
+  EXPECT_LT(f.widest_sample_gap_s, kContactSampleMaxAgeS);
+  EXPECT_NEAR(f.median_sample_gap_s, 0.1, 0.01);
+  EXPECT_GE(kContactSampleMaxAgeS, 3 * f.median_sample_gap_s);
+  EXPECT_LE(kContactSampleMaxAgeS, 1.0);
 }
 
 // The URG-04LX flies with the compact SLAM (autonomy::vehicle_slam_enabled; level 3, run in
