@@ -34,8 +34,8 @@ struct Flight {
   bool finished = false;
   // The estimate's error as a contact would be given it (metrics.json contacts[]): at the middle
   // sample's stamp, and just inside and just past the age limit after the last sample.
-  EstimateSample mid{};
-  std::optional<sim::EstimateError> at_mid, in_age_after_last, past_age_after_last;
+  EstimateSample mid{}, before_mid{};
+  std::optional<sim::EstimateError> at_mid, just_before_mid, in_age_after_last, past_age_after_last;
   double widest_sample_gap_s = 0, median_sample_gap_s = 0;
 };
 
@@ -58,9 +58,11 @@ Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double h
   m.metrics(out.metrics);
   out.finished = m.stack().finished();
   const std::vector<EstimateSample>& samples = m.samples();
-  if (!samples.empty()) {
+  if (samples.size() >= 2) {
     out.mid = samples[samples.size() / 2];
+    out.before_mid = samples[samples.size() / 2 - 1];
     out.at_mid = m.estimate_error_at(TimeUs::from_s(out.mid.t_s + 1e-4));  // 0.1 ms on: no rounding before it
+    out.just_before_mid = m.estimate_error_at(TimeUs::from_s(out.mid.t_s - 1e-4));  // the one before, not the nearest
     const double last = samples.back().t_s;
     out.in_age_after_last = m.estimate_error_at(TimeUs::from_s(last + kContactSampleMaxAgeS - 0.01));
     out.past_age_after_last = m.estimate_error_at(TimeUs::from_s(last + kContactSampleMaxAgeS + 0.01));
@@ -126,6 +128,8 @@ TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
   EXPECT_DOUBLE_EQ(f.at_mid->x_m, f.mid.est_pos.x() - f.mid.true_pos.x());
   EXPECT_DOUBLE_EQ(f.at_mid->y_m, f.mid.est_pos.y() - f.mid.true_pos.y());
   EXPECT_LT(std::hypot(f.at_mid->x_m, f.at_mid->y_m), 0.1);
+  ASSERT_TRUE(f.just_before_mid.has_value());
+  EXPECT_DOUBLE_EQ(f.just_before_mid->x_m, f.before_mid.est_pos.x() - f.before_mid.true_pos.x());
   EXPECT_TRUE(f.in_age_after_last.has_value());
   EXPECT_FALSE(f.past_age_after_last.has_value());
   EXPECT_LT(f.widest_sample_gap_s, kContactSampleMaxAgeS);

@@ -40,7 +40,7 @@ inline constexpr uint32_t kGridCells = 2;            // visited-grid cells per u
                                                      // (exploration/srt_retrace_cycles)
 inline constexpr uint32_t kFrontierCells = 1;        // ... counting frontier cells (up to five lookups
                                                      // each): 83.6 k measured (exploration/
-                                                     // frontier_count), 92.1 k at worst, nothing seen
+                                                     // frontier_count), 92.8 k at worst, nothing seen
                                                      // in reach (..._nothing_seen), charged 109 k
 inline constexpr uint32_t kSeenStep = 7;             // one step along a beam, its cell marked seen (two
                                                      // divisions and floors in software): a URG-04LX
