@@ -64,7 +64,6 @@ TEST(FlownHistory, FindsTheEarliestVisitOfAPlaceAndCutsBackToAPoint) {
 }
 
 using test::Outward;
-std::vector<Point2> flight_out(Outward shape = Outward::kLawnMower) { return test::retrace_flight_out(shape); }
 
 struct RetraceFlight {
   std::unique_ptr<SrtStarPlanner> planner = std::make_unique<SrtStarPlanner>();
@@ -103,10 +102,8 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, uint32_t work_per_cy
     r.most_work = std::max(r.most_work, r.planner->last_work());
     return st;
   };
-  LaserScan west_open = uniform_scan(kUrg, 1000);
-  for (int i = 0; i < west_open.beam_count; ++i)
-    if (std::fabs(west_open.angle_of(i)) < 0.6) west_open.range_mm[i] = range_code::kNoReturn;
-  const LaserScan enclosed = uniform_scan(kUrg, 1000);
+  const LaserScan west_open = test::retrace_start_scan();
+  const LaserScan enclosed = test::retrace_enclosed_scan();
   const float west = static_cast<float>(M_PI);
   bool fresh = false;
   EXPECT_EQ(update({0, 0, west}, west_open, TimeUs{}, fresh), Status::kOk);
@@ -115,13 +112,13 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, uint32_t work_per_cy
   EXPECT_EQ(r.planner->mode(), PlannerMode::kForward);
   EXPECT_LT(r.planner->waypoint().x, -0.3f);
   TimeUs t{};
-  for (const Point2& p : flight_out(shape)) {
+  for (const Point2& p : test::retrace_flight_out(shape)) {
     t += Duration::from_ms(100);
     EXPECT_EQ(update({p.x, p.y, 0}, enclosed, t, fresh), Status::kOk);
     EXPECT_FALSE(fresh);
   }
   EXPECT_EQ(r.planner->restarts(), 0u);
-  const Point2 last = flight_out(shape).back();
+  const Point2 last = test::retrace_flight_out(shape).back();
   r.end = {last.x, last.y, 0};
   t = TimeUs::from_s(1001);
   EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
@@ -171,7 +168,7 @@ TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsS
   EXPECT_EQ(r.planner->restarts(RestartReason::kRetraced), 1u);
   // Every waypoint is a point of the flight out, 2 m or so from the one before; the loop
   // north (y over 1.5 m between x 20 and 22) is not flown again.
-  const std::vector<Point2> out = flight_out();
+  const std::vector<Point2> out = test::retrace_flight_out();
   const auto off_the_path = [&out](Point2 q) {
     float nearest = 1e9f;
     for (const Point2& p : out) nearest = std::min(nearest, std::hypot(p.x - q.x, p.y - q.y));
@@ -208,7 +205,7 @@ TEST(SrtStarPlannerRetrace, TurningEarlyForTheNextLegCutsNoCornerByMoreThanTheDe
   const RetraceFlight r = fly(RetraceMode::kAlways, 300, kOneShot, Arrival::kAsEarlyAsAllowed);
   EXPECT_EQ(r.planner->retraces(), 1u);
   ASSERT_GE(r.waypoints.size(), 10u);
-  const std::vector<Point2> out = flight_out();
+  const std::vector<Point2> out = test::retrace_flight_out();
   std::size_t early = 0;
   for (std::size_t k = 0; k + 1 < r.waypoints.size(); ++k) {
     const float cut = distance_to_segment(r.arrivals[k], r.waypoints[k + 1], r.waypoints[k]);

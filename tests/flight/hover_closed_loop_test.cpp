@@ -122,8 +122,7 @@ TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
   EXPECT_EQ(metric(f.metrics, "heap_allocs_after_arm"), 0);
   // A contact is given the estimate's error from the mission's samples: the one at its time,
   // none once the newest is older than the age limit. The limit outlasts every gap between
-  // samples in this flight and several of the slowest laser's scans (a sample comes with each),
-  // without reaching back seconds.
+  // samples in this flight and several of the slowest laser's scans (a sample comes with each).
   ASSERT_TRUE(f.at_mid.has_value());
   EXPECT_DOUBLE_EQ(f.at_mid->x_m, f.mid.est_pos.x() - f.mid.true_pos.x());
   EXPECT_DOUBLE_EQ(f.at_mid->y_m, f.mid.est_pos.y() - f.mid.true_pos.y());
@@ -135,7 +134,6 @@ TEST(HoverClosedLoop, Urg04lxAtTenHertzAlsoHovers) {
   EXPECT_LT(f.widest_sample_gap_s, kContactSampleMaxAgeS);
   EXPECT_NEAR(f.median_sample_gap_s, 0.1, 0.01);
   EXPECT_GE(kContactSampleMaxAgeS, 3 * f.median_sample_gap_s);
-  EXPECT_LE(kContactSampleMaxAgeS, 1.0);
 }
 
 // The URG-04LX flies with the compact SLAM (autonomy::vehicle_slam_enabled; level 3, run in

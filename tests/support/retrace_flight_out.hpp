@@ -12,7 +12,9 @@
 #include <cstddef>
 #include <vector>
 
+#include "kestrel/core/messages.hpp"
 #include "kestrel/core/se2.hpp"
+#include "synthetic_world.hpp"
 
 namespace kestrel::test {
 
@@ -42,5 +44,16 @@ inline std::vector<Point2> retrace_flight_out(Outward shape = Outward::kLawnMowe
   poses.push_back(corners.back());
   return poses;
 }
+
+// The scans of that flight (URG-04LX, every return 1 m away): at the start, open only to the
+// west, behind the flight, so no waypoint is reached on the way out; and everywhere after it,
+// enclosed, so that a fresh tree grown where it ends runs out at once.
+inline LaserScan retrace_start_scan() {
+  LaserScan s = uniform_scan(LaserModel::urg04lx(), 1000);
+  for (int i = 0; i < s.beam_count; ++i)
+    if (std::fabs(s.angle_of(i)) < 0.6) s.range_mm[i] = range_code::kNoReturn;
+  return s;
+}
+inline LaserScan retrace_enclosed_scan() { return uniform_scan(LaserModel::urg04lx(), 1000); }
 
 }  // namespace kestrel::test

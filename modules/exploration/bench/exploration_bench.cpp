@@ -155,7 +155,6 @@ void srt_arrival_cycles(benchmark::State& state, uint16_t beams, double fov_deg,
 // next found along the trail). Each iteration starts from a copy of the planner before cycle 1,
 // the same work for every n: cycle n = `.../n` minus `.../n-1` (`kestrel-budget insns`).
 void srt_retrace_cycles(benchmark::State& state) {
-  const test::LaserModel urg = test::LaserModel::urg04lx();
   auto before = std::make_unique<SrtStarPlanner>();
   GuidanceParams g;
   g.waypoint_time_limit_s = 1000.0f;
@@ -163,10 +162,8 @@ void srt_retrace_cycles(benchmark::State& state) {
     state.SkipWithError("configure");
     return;
   }
-  LaserScan west_open = test::uniform_scan(urg, 1000);
-  for (int i = 0; i < west_open.beam_count; ++i)
-    if (std::fabs(west_open.angle_of(i)) < 0.6) west_open.range_mm[i] = range_code::kNoReturn;
-  const LaserScan enclosed = test::uniform_scan(urg, 1000);
+  const LaserScan west_open = test::retrace_start_scan();
+  const LaserScan enclosed = test::retrace_enclosed_scan();
   const float west = static_cast<float>(M_PI);
   bool fresh = false;
   do {
