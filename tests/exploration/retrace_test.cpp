@@ -20,7 +20,6 @@ using test::LaserModel;
 using test::uniform_scan;
 
 const LaserModel kUrg = LaserModel::urg04lx();
-constexpr int kSliceGuard = 1000000;  // calls an arrival step may take: a hang's guard only
 
 TEST(FlownHistory, KeepsPointsASpacingApartInTheOrderFlown) {
   FlownHistory h;
@@ -97,35 +96,26 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, uint32_t work_per_cy
   g.waypoint_time_limit_s = 1000.0f;
   EXPECT_EQ(r.planner->configure(srt, g, guarded), Status::kOk);
   // Every call's work, for the budget's test.
-  const auto update = [&r](const Pose2& pose, const LaserScan& scan, TimeUs now, bool& fresh) {
-    const Status st = r.planner->update(pose, scan, now, fresh);
+  const auto check = [&r](Status st) {
+    EXPECT_EQ(st, Status::kOk);
     r.most_work = std::max(r.most_work, r.planner->last_work());
-    return st;
   };
-  const LaserScan west_open = test::retrace_start_scan();
   const LaserScan enclosed = test::retrace_enclosed_scan();
-  const float west = static_cast<float>(M_PI);
   bool fresh = false;
-  EXPECT_EQ(update({0, 0, west}, west_open, TimeUs{}, fresh), Status::kOk);
-  for (int slice = 0; slice < kSliceGuard && r.planner->busy(); ++slice)
-    EXPECT_EQ(update({0, 0, west}, west_open, TimeUs{}, fresh), Status::kOk);
+  test::retrace_take_start(*r.planner, fresh, check);
   EXPECT_EQ(r.planner->mode(), PlannerMode::kForward);
   EXPECT_LT(r.planner->waypoint().x, -0.3f);
-  TimeUs t{};
-  for (const Point2& p : test::retrace_flight_out(shape)) {
-    t += Duration::from_ms(100);
-    EXPECT_EQ(update({p.x, p.y, 0}, enclosed, t, fresh), Status::kOk);
+  test::retrace_fly_out(*r.planner, shape, fresh, [&](Status st) {
+    check(st);
     EXPECT_FALSE(fresh);
-  }
+  });
   EXPECT_EQ(r.planner->restarts(), 0u);
   const Point2 last = test::retrace_flight_out(shape).back();
   r.end = {last.x, last.y, 0};
-  t = TimeUs::from_s(1001);
-  EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
+  TimeUs t = TimeUs::from_s(1001);
   // Sliced, the arrival step (the trail's count among it) goes on over the next calls, the
   // vehicle waiting where it is.
-  for (int slice = 0; slice < kSliceGuard && r.planner->busy(); ++slice)
-    EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
+  test::update_until_settled(*r.planner, r.end, enclosed, t, fresh, check);
   EXPECT_EQ(r.planner->restarts(RestartReason::kTimeout), 1u);
   r.trail_at_retrace = r.planner->trail().size();
   for (int k = 0; k < retrace_legs && r.planner->mode() == PlannerMode::kRetrace; ++k) {
@@ -139,9 +129,7 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, uint32_t work_per_cy
         const float f = static_cast<float>(i) / static_cast<float>(steps);
         r.end = {from.x + f * (w.x - from.x), from.y + f * (w.y - from.y), 0};
         t += Duration::from_ms(100);
-        EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
-        for (int slice = 0; slice < kSliceGuard && r.planner->busy(); ++slice)
-          EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
+        test::update_until_settled(*r.planner, r.end, enclosed, t, fresh, check);
         if (r.planner->mode() != PlannerMode::kRetrace || r.planner->waypoint().x != w.x ||
             r.planner->waypoint().y != w.y)
           break;
@@ -152,10 +140,12 @@ RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, uint32_t work_per_cy
     r.end = {w.x, w.y, 0};
     r.arrivals.push_back({w.x, w.y});
     t += Duration::from_s(1);
-    EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
-    r.arrival_work.push_back(r.planner->last_work());
-    for (int slice = 0; slice < kSliceGuard && r.planner->busy(); ++slice)
-      EXPECT_EQ(update(r.end, enclosed, t, fresh), Status::kOk);
+    bool arriving = true;  // the first call's work is the arrival's
+    test::update_until_settled(*r.planner, r.end, enclosed, t, fresh, [&](Status st) {
+      check(st);
+      if (arriving) r.arrival_work.push_back(r.planner->last_work());
+      arriving = false;
+    });
   }
   return r;
 }

@@ -14,6 +14,7 @@
 
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/se2.hpp"
+#include "kestrel/core/time.hpp"
 #include "synthetic_world.hpp"
 
 namespace kestrel::test {
@@ -55,5 +56,36 @@ inline LaserScan retrace_start_scan() {
   return s;
 }
 inline LaserScan retrace_enclosed_scan() { return uniform_scan(LaserModel::urg04lx(), 1000); }
+
+// Calls an arrival step may be sliced over before a driver gives up: a hang's guard only.
+inline constexpr int kSettleCallGuard = 1000000;
+
+// One update of `planner` (an SRT-Star planner), then more with the same pose, scan and stamp
+// while its arrival step is sliced over calls (the vehicle waiting where it is). `each(status)`
+// sees every call, so a test can check each one and read the planner's work after it.
+template <typename Planner, typename Each>
+void update_until_settled(Planner& planner, const Pose2& pose, const LaserScan& scan, TimeUs now, bool& fresh,
+                          Each&& each) {
+  each(planner.update(pose, scan, now, fresh));
+  for (int call = 0; call < kSettleCallGuard && planner.busy(); ++call) each(planner.update(pose, scan, now, fresh));
+}
+
+// The flight's start: the root grown at the origin facing west from retrace_start_scan().
+template <typename Planner, typename Each>
+void retrace_take_start(Planner& planner, bool& fresh, Each&& each) {
+  update_until_settled(planner, {0, 0, static_cast<float>(M_PI)}, retrace_start_scan(), TimeUs{}, fresh, each);
+}
+
+// The flight out after the start: one update a pose of retrace_flight_out(shape), 0.1 s apart,
+// facing east, every scan enclosed (no waypoint is reached on the way, so no call is sliced).
+template <typename Planner, typename Each>
+void retrace_fly_out(Planner& planner, Outward shape, bool& fresh, Each&& each) {
+  const LaserScan enclosed = retrace_enclosed_scan();
+  TimeUs t{};
+  for (const Point2& p : retrace_flight_out(shape)) {
+    t += Duration::from_ms(100);
+    each(planner.update({p.x, p.y, 0}, enclosed, t, fresh));
+  }
+}
 
 }  // namespace kestrel::test

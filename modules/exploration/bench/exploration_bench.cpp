@@ -162,19 +162,11 @@ void srt_retrace_cycles(benchmark::State& state) {
     state.SkipWithError("configure");
     return;
   }
-  const LaserScan west_open = test::retrace_start_scan();
-  const LaserScan enclosed = test::retrace_enclosed_scan();
-  const float west = static_cast<float>(M_PI);
   bool fresh = false;
-  do {
-    (void)before->update({0, 0, west}, west_open, TimeUs{}, fresh);
-  } while (before->busy());
-  TimeUs t{};
-  const std::vector<Point2> out = test::retrace_flight_out(test::Outward::kLong);
-  for (const Point2& p : out) {
-    t += Duration::from_ms(100);
-    (void)before->update({p.x, p.y, 0}, enclosed, t, fresh);
-  }
+  const auto ignore = [](Status) {};
+  test::retrace_take_start(*before, fresh, ignore);
+  test::retrace_fly_out(*before, test::Outward::kLong, fresh, ignore);
+  const Point2 last = test::retrace_flight_out(test::Outward::kLong).back();
   // The scenario the figures describe, as retrace_test.cpp's flight asserts it: no restart on
   // the way out, a history nearly full but never thinned.
   if (before->restarts() != 0 || before->mode() != PlannerMode::kForward || before->trail().size() < 800 ||
@@ -183,12 +175,13 @@ void srt_retrace_cycles(benchmark::State& state) {
     return;
   }
   const TimeUs late = TimeUs::from_s(1001);
+  const LaserScan enclosed = test::retrace_enclosed_scan();
   auto planner = std::make_unique<SrtStarPlanner>();
   int64_t calls = 0;
   uint32_t most_work = 0;
   for (auto _ : state) {
     *planner = *before;
-    Pose2 at{out.back().x, out.back().y, 0};
+    Pose2 at{last.x, last.y, 0};
     for (calls = 0; calls < state.range(0); ++calls) {
       if (calls > 0 && !planner->busy()) at = {planner->waypoint().x, planner->waypoint().y, 0};
       benchmark::DoNotOptimize(planner->update(at, enclosed, late + Duration::from_ms(100 * calls), fresh));
