@@ -10,6 +10,7 @@
 #include "kestrel/exploration/srt_star_planner.hpp"
 #include "kestrel/exploration/unflown_bearings.hpp"
 #include "kestrel/exploration/visited_grid.hpp"
+#include "planner_settle.hpp"
 #include "synthetic_world.hpp"
 
 namespace kestrel::exploration {
@@ -18,7 +19,6 @@ namespace {
 using test::LaserModel;
 using test::SegmentWorld;
 
-constexpr int kSliceGuard = 1000000;  // calls an arrival step may take: a hang's guard only
 
 // Cell indices of a point; the grid is anchored at (0, 0), so cells are whole metres.
 struct CellOf {
@@ -156,9 +156,7 @@ std::unique_ptr<SrtStarPlanner> scanned(RetraceMode mode, RetraceTarget target, 
   bool fresh = false;
   const Pose2 at{2.0f, 3.0f, 0.0f};
   for (int call = 0; call < calls; ++call) {
-    EXPECT_EQ(planner->update(at, scan, TimeUs{}, fresh), Status::kOk);
-    for (int slice = 0; slice < kSliceGuard && planner->busy(); ++slice)
-      EXPECT_EQ(planner->update(at, scan, TimeUs{}, fresh), Status::kOk);
+    test::update_until_settled(*planner, at, scan, TimeUs{}, fresh, [](Status st) { EXPECT_EQ(st, Status::kOk); });
     EXPECT_EQ(planner->mode(), PlannerMode::kForward);
   }
   return planner;

@@ -10,6 +10,7 @@
 
 #include "kestrel/exploration/srt_star_planner.hpp"
 #include "kestrel/exploration/srt_star_tree.hpp"
+#include "planner_settle.hpp"
 #include "synthetic_world.hpp"
 
 namespace kestrel::exploration {
@@ -117,9 +118,8 @@ Flight teleport(SrtStarPlanner& planner, const SegmentWorld& world, Pose2 start,
   for (int k = 0; k < max_steps && !planner.finished() && !(first_tree_only && planner.restarts() > 0); ++k) {
     bool fresh = false;
     const LaserScan scan = world.scan(kUrg, pose.x, pose.y, pose.theta, t);
-    EXPECT_EQ(planner.update(pose, scan, t, fresh), Status::kOk);
     // An arrival step in slices: the vehicle waits on the spot until it is done.
-    for (int slice = 0; slice < 1000 && planner.busy(); ++slice) EXPECT_EQ(planner.update(pose, scan, t, fresh), Status::kOk);
+    test::update_until_settled(planner, pose, scan, t, fresh, [](Status st) { EXPECT_EQ(st, Status::kOk); });
     if (fresh) {
       fl.modes.push_back(planner.mode());
       fl.waypoints.push_back(planner.waypoint());
@@ -958,9 +958,7 @@ TEST(SrtStarPlannerKeepOut, NoWaypointIsDrawnIntoOrThroughTheWindow) {
       for (int k = 0; k < 40 && !planner->finished(); ++k) {
         const LaserScan scan = laser_world.scan(kUrg, pose.x, pose.y, pose.theta, t);
         bool fresh = false;
-        do {
-          ASSERT_EQ(planner->update(pose, scan, t, fresh), Status::kOk);
-        } while (planner->busy());
+        test::update_until_settled(*planner, pose, scan, t, fresh, [](Status st) { EXPECT_EQ(st, Status::kOk); });
         const Point2 w = planner->waypoint();
         const bool crosses = segment_crosses_box({pose.x, pose.y}, w, window, 0.0f);
         if (keep_out && planner->mode() == PlannerMode::kForward) {

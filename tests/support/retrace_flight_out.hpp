@@ -15,6 +15,7 @@
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/se2.hpp"
 #include "kestrel/core/time.hpp"
+#include "planner_settle.hpp"
 #include "synthetic_world.hpp"
 
 namespace kestrel::test {
@@ -56,19 +57,6 @@ inline LaserScan retrace_start_scan() {
   return s;
 }
 inline LaserScan retrace_enclosed_scan() { return uniform_scan(LaserModel::urg04lx(), 1000); }
-
-// Calls an arrival step may be sliced over before a driver gives up: a hang's guard only.
-inline constexpr int kSettleCallGuard = 1000000;
-
-// One update of `planner` (an SRT-Star planner), then more with the same pose, scan and stamp
-// while its arrival step is sliced over calls (the vehicle waiting where it is). `each(status)`
-// sees every call, so a test can check each one and read the planner's work after it.
-template <typename Planner, typename Each>
-void update_until_settled(Planner& planner, const Pose2& pose, const LaserScan& scan, TimeUs now, bool& fresh,
-                          Each&& each) {
-  each(planner.update(pose, scan, now, fresh));
-  for (int call = 0; call < kSettleCallGuard && planner.busy(); ++call) each(planner.update(pose, scan, now, fresh));
-}
 
 // The flight's start: the root grown at the origin facing west from retrace_start_scan().
 template <typename Planner, typename Each>
