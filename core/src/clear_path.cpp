@@ -37,6 +37,13 @@ bool straight_path_clear(const LaserScan& scan, const Pose2& laser, Point2 targe
   const float step_c = std::cos(scan.angle_step_rad), step_s = std::sin(scan.angle_step_rad);
   for (std::size_t i = 0; i < scan.beam_count; ++i) {
     const uint16_t r_mm = scan.range_mm[i];
+    // A beam that said nothing (deflected, dropped out, too near) along the path's own
+    // directions, the cone its corridor fills to the target: the scan cannot vouch for the way.
+    // Paper 000's mirror deflects a fixed arc at the fan's edge, which is no more seen than
+    // what lies outside the fan.
+    if (!LaserScan::is_return(r_mm) && r_mm != range_code::kNoReturn && c > 0.0f &&
+        std::fabs(s) * length <= c * clearance_m)
+      return false;
     if (LaserScan::is_return(r_mm) && static_cast<float>(r_mm) < reach_mm) {
       const float r = static_cast<float>(r_mm) * 1e-3f;
       const float qx = r * c, qy = r * s;

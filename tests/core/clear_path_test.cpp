@@ -79,10 +79,10 @@ TEST(StraightPathClear, NotClearWhereTheScanSaysNothing) {
   const float edge = static_cast<float>(LaserModel::urg04lx().fov_rad / 2);
   EXPECT_FALSE(straight_path_clear(far, {0, 0, 0}, {2.0f * std::cos(edge - 0.05f), 2.0f * std::sin(edge - 0.05f)}, kClearance));
   EXPECT_TRUE(straight_path_clear(far, {0, 0, 0}, {2.0f * std::cos(edge - 0.3f), 2.0f * std::sin(edge - 0.3f)}, kClearance));
-  // Range codes block nothing; bad inputs are never clear.
+  // A scan of nothing but dropouts vouches for nothing; bad inputs are never clear.
   LaserScan codes = urg;
   for (uint16_t i = 0; i < codes.beam_count; ++i) codes.range_mm[i] = range_code::kDropout;
-  EXPECT_TRUE(straight_path_clear(codes, at, {1.5f, 8.0f}, kClearance));
+  EXPECT_FALSE(straight_path_clear(codes, at, {1.5f, 8.0f}, kClearance));
   EXPECT_FALSE(straight_path_clear(urg, at, {NAN, 8.0f}, kClearance));
   EXPECT_FALSE(straight_path_clear(urg, {NAN, 8.0f, 0.0f}, {1.5f, 8.0f}, kClearance));
   EXPECT_FALSE(straight_path_clear(urg, at, {1.5f, 8.0f}, 0.0f));
@@ -92,6 +92,35 @@ TEST(StraightPathClear, NotClearWhereTheScanSaysNothing) {
   LaserScan no_range = urg;
   no_range.max_range_mm = 0;
   EXPECT_FALSE(straight_path_clear(no_range, at, {1.5f, 8.0f}, kClearance));
+}
+
+// The beams the path runs along must have seen it: paper 000's mirror deflects the UTM-30LX's
+// first 20 beams down (kDeflected), and a shortcut home along them crossed a wall (gt-building,
+// seed 29: 18.7 m from the north-east room through the corridor's wall). Outside the path's own
+// directions a code blocks nothing.
+TEST(StraightPathClear, NotClearAlongBeamsThatSaidNothing) {
+  SegmentWorld open;
+  open.add(-40, -40, -40, 40);  // beyond the 30 m range: every beam reads kNoReturn
+  LaserScan scan = open.scan(LaserModel::utm30lx(), 0, 0, 0);
+  const auto along_beam = [&scan](std::size_t i, float r) {
+    const float a = scan.angle_of(i);
+    return Point2{r * std::cos(a), r * std::sin(a)};
+  };
+  const Point2 far_in_mirror_arc = along_beam(10, 18.0f);
+  const Point2 near_in_mirror_arc = along_beam(18, 6.0f);
+  const Point2 beside_mirror_arc = along_beam(60, 18.0f);  // 10 degrees from the arc's edge
+  ASSERT_TRUE(straight_path_clear(scan, {0, 0, 0}, far_in_mirror_arc, kClearance));
+  ASSERT_TRUE(straight_path_clear(scan, {0, 0, 0}, near_in_mirror_arc, kClearance));
+  for (std::size_t i = 0; i < 20; ++i) scan.range_mm[i] = range_code::kDeflected;
+  EXPECT_FALSE(straight_path_clear(scan, {0, 0, 0}, far_in_mirror_arc, kClearance));
+  EXPECT_FALSE(straight_path_clear(scan, {0, 0, 0}, near_in_mirror_arc, kClearance));
+  EXPECT_TRUE(straight_path_clear(scan, {0, 0, 0}, beside_mirror_arc, kClearance));
+  // One dropout on the path's bearing: not vouched for; one a few degrees off it: clear.
+  scan.range_mm[540] = range_code::kDropout;
+  EXPECT_FALSE(straight_path_clear(scan, {0, 0, 0}, along_beam(540, 10.0f), kClearance));
+  EXPECT_TRUE(straight_path_clear(scan, {0, 0, 0}, along_beam(560, 10.0f), kClearance));
+  scan.range_mm[540] = range_code::kTooNear;
+  EXPECT_FALSE(straight_path_clear(scan, {0, 0, 0}, along_beam(540, 10.0f), kClearance));
 }
 
 // The beam directions are rotated beam by beam: over the UTM-30LX's 1081 beams they must still
