@@ -11,19 +11,8 @@ namespace kestrel {
 namespace {
 
 using test::LaserModel;
+using test::corridor_with_a_door;
 using test::SegmentWorld;
-
-// A corridor 2 m wide (y 7..9) along x, closed at x = 0, with a 1.2 m door in its north wall
-// at x 5..6.2: gt-building's west end, where the flight home stalled.
-SegmentWorld corridor_with_a_door() {
-  SegmentWorld w;
-  w.add(0, 7, 12, 7);
-  w.add(0, 9, 5, 9);
-  w.add(6.2, 9, 12, 9);
-  w.add(0, 7, 0, 9);
-  w.add(5, 9, 5, 12);  // the room's west wall beyond the door
-  return w;
-}
 
 constexpr float kClearance = 0.45f;
 

@@ -198,6 +198,44 @@ TEST(MissionController, ExploreThenReturnsAlongTheTrailAndLandsAtHome) {
   EXPECT_NEAR(r.v.nav.position_m.y(), 2.0f, 0.2f);
 }
 
+// GIVEN an explore mission out along an L WHEN, at its end, the estimate is corrected 0.5 m
+// east from the L's corner on (a SLAM correction, seconds late: the filter's state moves, and
+// so does its path since the correction's stamp) THEN the flight home comes down the L's leg
+// where the corrected estimate puts it, not where the estimate stood when it was drawn.
+TEST(MissionController, TheTrailMovesWithALateCorrectionOfTheEstimate) {
+  for (const bool told : {true, false}) {
+    MissionRun r;
+    MissionParams p;
+    p.return_shortcut = false;
+    ExplorerOutput e;
+    ASSERT_TRUE(r.mc.configure(MissionKind::kExplore, p) == Status::kOk);
+    e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
+    ASSERT_TRUE(r.run_until(Phase::kExplore, 10, &e));
+    e.setpoint.velocity_mps = {0.5f, 0, 0};
+    for (int i = 0; i < 160; ++i) r.step(&e);
+    const TimeUs corner = r.t;
+    e.setpoint.velocity_mps = {0, 0.5f, 0};
+    for (int i = 0; i < 160; ++i) r.step(&e);
+    const Pose2 delta{0.5f, 0, 0};
+    r.v.nav.position_m.x() += 0.5f;
+    if (told) r.mc.estimate_moved(corner, delta);
+    e.finished = true;
+    r.step(&e);
+    ASSERT_EQ(r.mc.phase(), Phase::kReturn);
+    float worst = 0;  // from the leg's corrected line, x = 3.5, on the way down it
+    for (int i = 0; i < 4000 && r.mc.phase() == Phase::kReturn; ++i) {
+      r.step(&e);
+      if (r.v.nav.position_m.y() > 2.5f) worst = std::max(worst, std::fabs(r.v.nav.position_m.x() - 3.5f));
+    }
+    EXPECT_TRUE(r.mc.returned_home()) << told;
+    if (told) {
+      EXPECT_LT(worst, 0.1f);
+    } else {
+      EXPECT_GT(worst, 0.4f);  // the old trail, half a metre west
+    }
+  }
+}
+
 // GIVEN an explore mission home again WHEN it lands THEN the descent flies velocity set-points
 // towards home, which the composition bounds against the scan (home is a point of the
 // estimate's frame and may have drifted against a wall), and it settles there; a hover
@@ -382,6 +420,71 @@ TEST(MissionController, TheShortcutIsOffWhenToldAndItsClearanceIsChecked) {
   EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
   p.shortcut_clearance_m = NAN;
   EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+}
+
+// GIVEN a trail drawn south through a door (x 1.6..2.8 in a wall at y = 4) WHEN, on the way
+// home, the estimate stands 0.6 m west of where it stood when the trail was drawn (its drift
+// along a corridor: the trail now runs down the door's east jamb) and the vehicle is held 0.4 m
+// off the walls (the approach limiter, sliding along them) THEN, stalled, the trail ahead is
+// laid back onto the door the scan shows and the vehicle lands at home; with the alignment off,
+// the stall lands it beyond the wall.
+struct JambFlight {
+  bool home = false;
+  uint32_t realignments = 0;
+  float closest_to_a_wall_m = 1e9f;
+};
+JambFlight fly_home_beside_a_jamb(float realign_s) {
+  MissionRun r;
+  MissionParams p;
+  p.return_stall_s = 20.0f;
+  p.return_realign_s = realign_s;
+  p.return_shortcut = false;  // the trail alone
+  ExplorerOutput e;
+  JambFlight out;
+  // Home (1, 2); east 1.2 m to the door's middle, north 4 m through it to (2.2, 6).
+  EXPECT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 96}, {{0, 0.5f, 0}, 320}}));
+  test::SegmentWorld world;
+  world.add(-5, 4, 1.6, 4);
+  world.add(2.8, 4, 10, 4);
+  const Eigen::Vector2f drift(0.6f, 0.0f);  // truth = estimate + drift, from now on
+  const auto held_off = [&](const Eigen::Vector3f& est) {
+    return world.clearance(est.x() + drift.x(), est.y() + drift.y()) < 0.4;
+  };
+  r.v.nav.heading_rad = static_cast<float>(-M_PI / 2);
+  for (int i = 0; i < 8000 && r.mc.phase() == Phase::kReturn; ++i) {
+    r.t += Duration::from_s(MissionRun::kDt);
+    r.v.nav.stamp = r.t;
+    const Eigen::Vector2f truth = r.v.nav.position_m.head<2>() + drift;
+    const LaserScan scan = world.scan(test::LaserModel::urg04lx(), truth.x(), truth.y(), r.v.nav.heading_rad, r.t);
+    const GuidanceSetpoint s = r.mc.step(r.t, r.v.nav, &e, &scan);
+    const Eigen::Vector3f before = r.v.nav.position_m;
+    r.v.follow(s, MissionRun::kDt);
+    r.v.nav.heading_rad = s.heading_rad;
+    // Held 0.4 m off the walls: what the step would bring nearer is dropped, axis by axis.
+    if (held_off(r.v.nav.position_m)) {
+      Eigen::Vector3f slid = before;
+      slid.x() = r.v.nav.position_m.x();
+      if (held_off(slid)) slid.x() = before.x();
+      slid.y() = r.v.nav.position_m.y();
+      if (held_off(slid)) slid.y() = before.y();
+      r.v.nav.position_m = slid;
+    }
+    out.closest_to_a_wall_m = std::min(out.closest_to_a_wall_m,
+                                       static_cast<float>(world.clearance(r.v.nav.position_m.x() + drift.x(),
+                                                                          r.v.nav.position_m.y() + drift.y())));
+  }
+  out.home = r.mc.returned_home();
+  out.realignments = r.mc.realignments();
+  return out;
+}
+
+TEST(MissionController, StalledBesideAJambTheTrailIsLaidBackOntoTheDoor) {
+  const JambFlight aligned = fly_home_beside_a_jamb(5.0f);
+  EXPECT_TRUE(aligned.home);
+  EXPECT_GE(aligned.realignments, 1u);
+  const JambFlight as_drawn = fly_home_beside_a_jamb(0.0f);
+  EXPECT_FALSE(as_drawn.home);
+  EXPECT_EQ(as_drawn.realignments, 0u);
 }
 
 TEST(MissionController, StaleEstimateTriggersFailsafeLanding) {
@@ -659,6 +762,14 @@ TEST(MissionController, RejectsBadConfiguration) {
   p = MissionParams{};
   p.preflight_s = -1.0f;
   EXPECT_EQ(mc.configure(MissionKind::kHover, p), Status::kInvalidArgument);
+  p = MissionParams{};
+  p.return_realign_s = -1.0f;
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p.return_realign_s = 5.0f;
+  p.realign_max_offset_m = 1.5f;  // beyond what the scan's grid can weigh
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
+  p.realign_max_offset_m = std::nanf("");
+  EXPECT_EQ(mc.configure(MissionKind::kExplore, p), Status::kInvalidArgument);
   EXPECT_EQ(mc.configure(MissionKind::kWaypoints, {}, nullptr), Status::kInvalidArgument);
   StaticVector<Waypoint, 2> wps;
   ASSERT_TRUE(wps.push_back({{1, 1, -1}, 0, 0}));  // below the floor

@@ -107,4 +107,17 @@ inline LaserScan uniform_scan(const LaserModel& m, uint16_t value) {
   return s;
 }
 
+// gt-building's corridor: 2 m wide (y 7..9) along x, closed at x = 0, with a 1.2 m door in its
+// north wall at x 5..6.2 into a room whose west wall is x = 5. Flights home stalled here, held
+// off the north wall beside the door's jamb.
+inline SegmentWorld corridor_with_a_door() {
+  SegmentWorld w;
+  w.add(0, 7, 12, 7);
+  w.add(0, 9, 5, 9);
+  w.add(6.2, 9, 12, 9);
+  w.add(0, 7, 0, 9);
+  w.add(5, 9, 5, 12);
+  return w;
+}
+
 }  // namespace kestrel::test

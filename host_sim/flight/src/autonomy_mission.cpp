@@ -214,6 +214,10 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "return_shortcut" && kind == mission::MissionKind::kExplore) {
       if (value != "on" && value != "off") return "return_shortcut: expected on or off, got '" + value + "'";
       out.stack.mission.return_shortcut = value == "on";
+    } else if (key == "return_realign_s" && kind == mission::MissionKind::kExplore) {
+      // Stalled this long on the way home, the trail ahead is laid onto the scan (0: never).
+      if (!parse_double(value, d) || d < 0) return "return_realign_s: '" + value + "' is not a non-negative number";
+      out.stack.mission.return_realign_s = static_cast<float>(d);
     } else if (bool* on = explorer_switch(key, out.stack.explorer); on != nullptr && kind == mission::MissionKind::kExplore) {
       if (value != "on" && value != "off") {
         std::string e = key;
@@ -461,6 +465,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
   out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);
   out.emplace_back("return_shortcuts", stack_->mission().shortcuts());
+  out.emplace_back("return_realignments", stack_->mission().realignments());
   // Home re-localisation (home_fix.hpp): reference scans drawn, scans searched on the way home,
   // fixes found, confirmed by the next search, and applied (or refused) by the filter.
   const autonomy::HomeFixCounters& hf = stack_->home_fix().counters();

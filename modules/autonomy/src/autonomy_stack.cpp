@@ -126,9 +126,15 @@ void AutonomyStack::background_step() {
 void AutonomyStack::take_slam_correction() {
   const PoseMeasurement2* correction = slam_out_.readable();
   if (correction == nullptr) return;
-  (void)filter_.apply_correction(*correction);  // refusals are counted by the filter
+  const Pose2 before = filter_.frame_correction();
+  // Refusals are counted by the filter.
+  if (filter_.apply_correction(*correction) == Status::kOk) estimate_moved(correction->stamp, before);
   slam_out_.done();
   nav_ = filter_.state();
+}
+
+void AutonomyStack::estimate_moved(TimeUs since, const Pose2& frame_before) {
+  mission_.estimate_moved(since, filter_.frame_correction().compose(frame_before.inverse()));
 }
 
 void AutonomyStack::offer_scan_to_slam() {
@@ -175,6 +181,7 @@ void AutonomyStack::take_home_fix() {
   }
   ++counters_.home_fixes;
   slam_frame_.filter_moved(before, filter_.frame_correction());
+  estimate_moved(fix.stamp, before);
   nav_ = filter_.state();
 }
 

@@ -1,5 +1,7 @@
 #include "kestrel/mission/breadcrumb_trail.hpp"
 
+#include <cmath>
+
 #include "kestrel/core/path_halving.hpp"
 #include "kestrel/core/se2.hpp"
 
@@ -10,28 +12,52 @@ void BreadcrumbTrail::clear() {
   spacing_m_ = base_spacing_m_;
 }
 
-void BreadcrumbTrail::record(const Eigen::Vector3f& p) {
+void BreadcrumbTrail::record(const Eigen::Vector3f& p, TimeUs stamp) {
   if (!p.allFinite()) return;
-  // Back near an earlier point (not just the last few): the path in between was a loop.
+  // Back near an earlier point (not just the last few): the path in between was a loop. The
+  // earlier point keeps its stamp: it was drawn, and is shifted, with the path before it.
   const float close = 0.5f * spacing_m_;
   for (std::size_t i = 0; i + 3 < points_.size(); ++i) {
-    if ((p - points_[i]).head<2>().norm() < close) {
+    if ((p - points_[i].position_m).head<2>().norm() < close) {
       cut_loop_to(i);
       return;
     }
   }
-  if (!points_.empty() && (p - points_.back()).head<2>().norm() < spacing_m_) return;
+  if (!points_.empty() && (p - points_.back().position_m).head<2>().norm() < spacing_m_) return;
   if (points_.full()) thin_out();
-  (void)points_.push_back(p);
+  (void)points_.push_back({p, stamp});
+}
+
+void BreadcrumbTrail::shift_since(TimeUs since, const Pose2& delta) {
+  if (!delta.finite()) return;
+  // Every point, not a search from the end: stamps are in order only while the estimate's
+  // clock never stepped back.
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    Breadcrumb& b = points_[i];
+    if (b.stamp < since) continue;
+    const Point2 moved = delta.transform(Point2{b.position_m.x(), b.position_m.y()});
+    b.position_m.x() = moved.x;
+    b.position_m.y() = moved.y;
+  }
 }
 
 void BreadcrumbTrail::cut_loop_to(std::size_t earlier_index) {
   while (points_.size() > earlier_index + 1) points_.pop_back();
 }
 
+void BreadcrumbTrail::move_points(std::size_t first, std::size_t last, Point2 offset) {
+  if (!std::isfinite(offset.x) || !std::isfinite(offset.y)) return;
+  for (std::size_t i = first; i <= last && i < points_.size(); ++i) {
+    points_[i].position_m.x() += offset.x;
+    points_[i].position_m.y() += offset.y;
+  }
+}
+
 namespace {
 // How far the leg a-b passes from p, in the plane.
-float deviation(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& p) {
+template <class Crumb>
+float deviation(const Crumb& ca, const Crumb& cb, const Crumb& cp) {
+  const Eigen::Vector3f &a = ca.position_m, &b = cb.position_m, &p = cp.position_m;
   return distance_to_segment(Point2{a.x(), a.y()}, Point2{b.x(), b.y()}, Point2{p.x(), p.y()});
 }
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "kestrel/core/angle.hpp"
 #include "kestrel/core/clear_path.hpp"
+#include "kestrel/mission/trail_alignment.hpp"
 
 namespace kestrel::mission {
 
@@ -48,6 +49,23 @@ constexpr float kMaxScanAgeS = 0.5f;
 constexpr float kRehomeM = 0.6f;
 // The most one step advances the mission's clock (timers): see step().
 constexpr Duration kMaxClockStep = Duration::from_us(1'000'000);
+// Laying the trail back onto the scan (trail_alignment.hpp): a breadcrumb counts where it is
+// this far from every return, twice where it is the wide distance from them too (a 1.2 m door's
+// middle fifth, where the approach limiter's 0.4 m leaves room either side). At most this many
+// breadcrumbs ahead are laid.
+constexpr float kAlignNearM = 0.3f;
+constexpr float kAlignWideM = 0.5f;
+constexpr std::size_t kAlignWindow = 8;
+
+// Where the laser was when the scan was taken (its middle beam): the estimate carried back at
+// its own rates. Turning at the return's 0.5 rad/s, a scan 0.1 s old is 0.05 rad off the
+// heading now, 0.17 m at 3.5 m: too much to ignore against the clearance.
+Pose2 laser_at_scan(const NavState& nav, const LaserScan& scan) {
+  const TimeUs mid = scan.stamp + scan.beam_interval * static_cast<int64_t>(scan.beam_count / 2);
+  const float age = std::clamp(static_cast<float>((nav.stamp - mid).seconds()), 0.0f, kMaxScanAgeS);
+  return {nav.position_m.x() - nav.velocity_mps.x() * age, nav.position_m.y() - nav.velocity_mps.y() * age,
+          wrap_angle(nav.heading_rad - nav.yaw_rate_radps * age)};
+}
 }  // namespace
 
 bool MissionController::homing() const {
@@ -61,6 +79,8 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
       !positive_finite(p.return_speed_mps) || !positive_finite(p.breadcrumb_spacing_m) ||
       !positive_finite(p.return_yaw_rate_radps) || !positive_finite(p.return_stall_s) ||
       !positive_finite(p.shortcut_clearance_m) ||
+      !(std::isfinite(p.return_realign_s) && p.return_realign_s >= 0) ||
+      !(std::isfinite(p.realign_max_offset_m) && p.realign_max_offset_m >= 0 && p.realign_max_offset_m <= 1.0f) ||
       !(std::isfinite(p.home_survey_rad) && p.home_survey_rad >= 0 && p.home_survey_rad <= 4.0f * kPi<float>) ||
       !(std::isfinite(p.stall_survey_radius_m) && p.stall_survey_radius_m >= 0) ||
       !(std::isfinite(p.takeoff_survey_rad) && p.takeoff_survey_rad >= 0 && p.takeoff_survey_rad <= 4.0f * kPi<float>) ||
@@ -89,6 +109,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
   returned_home_ = false;
   stall_surveyed_ = false;
   shortcuts_ = 0;
+  realignments_ = 0;
   seen_estimate_ = false;
   configured_ = true;
   return Status::kOk;
@@ -177,7 +198,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
           enter(Phase::kWaypoints, t);
         } else {
           trail_.clear();
-          trail_.record(nav.position_m);
+          trail_.record(nav.position_m, nav.stamp);
           enter(Phase::kExplore, t);
         }
       }
@@ -211,7 +232,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       return hold(now, target.position_m, target.heading_rad);
     }
     case Phase::kExplore: {
-      if (estimate_ok) trail_.record(nav.position_m);
+      if (estimate_ok) trail_.record(nav.position_m, nav.stamp);
       const bool timed_out = (t - phase_start_).seconds() >= params_.explore_time_limit_s;
       if (explorer == nullptr || explorer->finished || timed_out) {
         return_index_ = trail_.size() == 0 ? 0 : trail_.size() - 1;
@@ -282,6 +303,15 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         }
         enter(Phase::kLand, t);
         return hold(now, hold_point_, hold_heading_);
+      }
+      // Stalled a while: the trail ahead may lie off where it was flown; lay it back onto what
+      // the scan shows free, once each return_realign_s (the stall still lands the vehicle).
+      if (params_.return_realign_s > 0 && params_.realign_max_offset_m > 0 && scan != nullptr && estimate_ok &&
+          (t - progress_at_).seconds() >= params_.return_realign_s &&
+          (t - realigned_at_).seconds() >= params_.return_realign_s) {
+        realigned_at_ = t;
+        align_trail_with_scan(nav, *scan);
+        target = breadcrumb(return_index_);
       }
       // Velocity set-points, so that the composition can bound them against the laser's
       // returns (the trail was drawn in the estimate's frame, which may have drifted since), and
@@ -357,6 +387,27 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
   return hold(now, hold_point_, hold_heading_);
 }
 
+void MissionController::align_trail_with_scan(const NavState& nav, const LaserScan& scan) {
+  if (return_index_ == 0) return;  // home itself is next: it does not move
+  if (free_space_.build(scan, laser_at_scan(nav, scan), kAlignNearM, kAlignWideM) != Status::kOk) return;
+  // The next breadcrumbs, while near enough that the scan can show them free at any offset.
+  const float reach = ScanFreeSpace::kReachM - params_.realign_max_offset_m;
+  std::array<Point2, kAlignWindow> ahead;
+  std::size_t n = 0;
+  for (std::size_t i = return_index_; i >= 1 && n < ahead.size(); --i) {
+    const Eigen::Vector3f& p = trail_.point(i);
+    if ((p - nav.position_m).head<2>().squaredNorm() > reach * reach) break;
+    ahead[n++] = {p.x(), p.y()};
+  }
+  Point2 offset;
+  if (n == 0 || !find_trail_offset(free_space_, {ahead.data(), n}, params_.realign_max_offset_m,
+                                   {params_.keep_out.data(), params_.keep_out_count}, params_.shortcut_clearance_m,
+                                   offset))
+    return;
+  trail_.move_points(return_index_ + 1 - n, return_index_, offset);
+  ++realignments_;
+}
+
 Eigen::Vector3f MissionController::breadcrumb(std::size_t i) const {
   Eigen::Vector3f p = trail_.size() > 0 && i > 0 ? trail_.point(i) : home_;
   p.z() = params_.takeoff_altitude_m;
@@ -371,13 +422,7 @@ void MissionController::look_for_shortcut(const NavState& nav, const LaserScan& 
   if (shortcut_cursor_ >= return_index_) shortcut_cursor_ = 0;
   const float reach = static_cast<float>(scan.max_range_mm) * 1e-3f - params_.shortcut_clearance_m;
   if (!(reach > 0.0f)) return;
-  // Where the laser was when the scan was taken (its middle beam): the estimate carried back at
-  // its own rates. Turning at the return's 0.5 rad/s, a scan 0.1 s old is 0.05 rad off the
-  // heading now, 0.17 m at 3.5 m: too much to ignore against the clearance.
-  const TimeUs mid = scan.stamp + scan.beam_interval * static_cast<int64_t>(scan.beam_count / 2);
-  const float age = std::clamp(static_cast<float>((nav.stamp - mid).seconds()), 0.0f, kMaxScanAgeS);
-  const Pose2 laser{nav.position_m.x() - nav.velocity_mps.x() * age, nav.position_m.y() - nav.velocity_mps.y() * age,
-                    wrap_angle(nav.heading_rad - nav.yaw_rate_radps * age)};
+  const Pose2 laser = laser_at_scan(nav, scan);
   const std::size_t end = std::min(return_index_, shortcut_cursor_ + kExaminedPerStep);
   for (std::size_t i = shortcut_cursor_; i < end; ++i) {
     const Eigen::Vector3f p = breadcrumb(i);

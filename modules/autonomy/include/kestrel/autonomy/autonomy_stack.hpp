@@ -124,6 +124,9 @@ class AutonomyStack {
   void guidance_task(TimeUs now);
   void control_task(TimeUs now);
   void take_slam_correction();
+  // A correction the filter took moved the estimate's path from `since` on; what was drawn
+  // along it (the mission's breadcrumbs) moves too.
+  void estimate_moved(TimeUs since, const Pose2& frame_before);
   void offer_scan_to_slam();
   void offer_scan_to_home_fix();
   void take_home_fix();

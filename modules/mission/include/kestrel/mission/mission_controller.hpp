@@ -32,6 +32,7 @@
 
 #include "kestrel/core/keep_out.hpp"
 #include "kestrel/core/messages.hpp"
+#include "kestrel/core/scan_free_space.hpp"
 #include "kestrel/core/static_vector.hpp"
 #include "kestrel/core/status.hpp"
 #include "kestrel/mission/breadcrumb_trail.hpp"
@@ -85,6 +86,12 @@ struct MissionParams {
   float breadcrumb_spacing_m = 0.4f;
   bool return_shortcut = true;         // leave the trail where the scan shows a way nearer home
   float shortcut_clearance_m = 0.45f;  // ... clear by this (the approach limiter stops at 0.4 m)
+  // Stalled on the way home this long, the next breadcrumbs (up to 8, within the scan's 3.1 m)
+  // are laid back onto the free space the newest scan shows, moved by at most
+  // realign_max_offset_m (mission/trail_alignment.hpp); again after as long again while the
+  // stall lasts. 0: never.
+  float return_realign_s = 5.0f;
+  float realign_max_offset_m = 0.8f;  // at most 1
   // ... and entering none of these boxes grown by that clearance: the laser sees through glass,
   // the trail was flown. The composition sets them to the explorer's (iarc-arena's window: a
   // UTM-30LX flight home cut through it where the estimate had drifted 0.8 m).
@@ -111,6 +118,12 @@ class MissionController {
   GuidanceSetpoint step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer,
                         const LaserScan* scan = nullptr);
 
+  // The estimate was corrected late: its path from `since` (the estimate's time) on moved by
+  // `delta` (NavFilter::frame_correction() after * before^-1). The breadcrumbs recorded since
+  // move with it. Home does not: it was taken on the ground, before any time a correction
+  // reaches back to.
+  void estimate_moved(TimeUs since, const Pose2& delta) { trail_.shift_since(since, delta); }
+
   const MissionParams& params() const { return params_; }
   Phase phase() const { return phase_; }
   bool finished() const { return phase_ == Phase::kLanded; }
@@ -129,6 +142,7 @@ class MissionController {
   std::size_t waypoint_index() const { return waypoint_index_; }
   const BreadcrumbTrail& trail() const { return trail_; }
   uint32_t shortcuts() const { return shortcuts_; }  // breadcrumbs skipped on the scan's word
+  uint32_t realignments() const { return realignments_; }  // stretches of trail laid onto a scan
   // Time the hover phase began: the hover metric is measured from here.
   bool hovering() const { return phase_ == Phase::kHover; }
 
@@ -147,6 +161,8 @@ class MissionController {
   // Examines the next breadcrumbs nearer home than return_index_ and checks the first within
   // the scan's reach; a clear way makes it the target.
   void look_for_shortcut(const NavState& nav, const LaserScan& scan);
+  // Moves the next breadcrumbs to where the scan shows free space (trail_alignment.hpp).
+  void align_trail_with_scan(const NavState& nav, const LaserScan& scan);
 
   MissionKind kind_ = MissionKind::kHover;
   MissionParams params_;
@@ -176,6 +192,9 @@ class MissionController {
   bool stall_surveyed_ = false;  // the stalled flight home's turn has begun (once a mission)
   std::size_t shortcut_cursor_ = 0;  // the breadcrumb look_for_shortcut examines next
   uint32_t shortcuts_ = 0;
+  TimeUs realigned_at_;
+  uint32_t realignments_ = 0;
+  ScanFreeSpace free_space_;  // align_trail_with_scan's, kept here: 4 kB
   bool configured_ = false;
 };
 

@@ -1,0 +1,119 @@
+#include "kestrel/core/scan_free_space.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kestrel {
+namespace {
+constexpr int32_t kCellMm = 100;  // ScanFreeSpace::kCellM
+constexpr int32_t kHalfCellMm = kCellMm / 2;
+constexpr int32_t kReachMm = kCellMm * (ScanFreeSpace::kSide / 2 - 1);
+constexpr int kOne = 30;  // beam directions in Q30
+constexpr uint8_t kOrthogonal = 3, kDiagonal = 4;  // chamfer steps, in thirds of a cell
+
+int32_t q30(float v) { return static_cast<int32_t>(std::lround(static_cast<double>(v) * (1 << kOne))); }
+int32_t rotate(int32_t a, int32_t b, int32_t ca, int32_t sb) {
+  return static_cast<int32_t>((static_cast<int64_t>(a) * ca - static_cast<int64_t>(b) * sb) >> kOne);
+}
+uint8_t units_of(float metres) {
+  return static_cast<uint8_t>(std::ceil(metres / ScanFreeSpace::kCellM * kOrthogonal - 1e-4f));
+}
+}  // namespace
+
+Status ScanFreeSpace::build(const LaserScan& scan, const Pose2& laser, float near_m, float wide_m) {
+  cells_.fill(kDistance);  // unseen, no return near
+  built_ = false;
+  if (!laser.finite() || !(near_m > 0.0f) || !(wide_m >= near_m) || !(wide_m <= 1.0f) || scan.beam_count == 0 ||
+      scan.beam_count > kMaxBeams || !std::isfinite(scan.first_angle_rad) || !std::isfinite(scan.angle_step_rad) ||
+      scan.angle_step_rad == 0.0f)
+    return Status::kInvalidArgument;
+  constexpr float kHalfM = kCellM * (kSide / 2);
+  corner_ = {laser.x - kHalfM, laser.y - kHalfM};
+  near_units_ = units_of(near_m);
+  wide_units_ = units_of(wide_m);
+  // Beam directions by an integer rotation: two trigonometric pairs in all.
+  int32_t c = q30(std::cos(laser.theta + scan.first_angle_rad)), s = q30(std::sin(laser.theta + scan.first_angle_rad));
+  const int32_t step_c = q30(std::cos(scan.angle_step_rad)), step_s = q30(std::sin(scan.angle_step_rad));
+  const int32_t no_return_mm = std::min<int32_t>(scan.max_range_mm, kReachMm);
+  const int32_t origin_q8 = (kSide / 2) << 8;  // the laser, in cell units
+  for (std::size_t i = 0; i < scan.beam_count; ++i) {
+    const int32_t beam_c = c, beam_s = s;
+    c = rotate(beam_c, beam_s, step_c, step_s);
+    s = rotate(beam_s, -beam_c, step_c, step_s);
+    const uint16_t r_mm = scan.range_mm[i];
+    int32_t ray_mm;
+    bool ends_at_return = false;
+    if (LaserScan::is_return(r_mm)) {
+      ends_at_return = r_mm <= kReachMm;
+      ray_mm = std::min<int32_t>(r_mm, kReachMm);
+    } else if (r_mm == range_code::kNoReturn) {
+      ray_mm = no_return_mm;  // nothing in range: open space
+    } else {
+      continue;  // deflected, dropped out, too near: no word on this direction
+    }
+    // Half a cell a step: the direction times 128 in Q8 cell units.
+    draw_ray(origin_q8, origin_q8, beam_c >> (kOne - 7), beam_s >> (kOne - 7), ray_mm / kHalfCellMm, ends_at_return);
+  }
+  chamfer();
+  built_ = true;
+  return Status::kOk;
+}
+
+void ScanFreeSpace::draw_ray(int32_t x_q8, int32_t y_q8, int32_t step_x_q8, int32_t step_y_q8, int steps,
+                             bool ends_at_return) {
+  int x = 0, y = 0;
+  for (int k = 0; k <= steps; ++k, x_q8 += step_x_q8, y_q8 += step_y_q8) {
+    x = x_q8 >> 8;
+    y = y_q8 >> 8;
+    if (x < 0 || y < 0 || x >= kSide || y >= kSide) return;
+    cell(x, y) |= kSeen;
+  }
+  if (ends_at_return) cell(x, y) &= kSeen;  // the return: distance zero
+}
+
+void ScanFreeSpace::chamfer() {
+  const auto relax = [](uint8_t& v, uint8_t from, uint8_t step) {
+    const int d = (from & kDistance) + step;
+    if (d < (v & kDistance)) v = static_cast<uint8_t>((v & kSeen) | d);
+  };
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      uint8_t& v = cell(x, y);
+      if (x > 0) relax(v, cell(x - 1, y), kOrthogonal);
+      if (y > 0) {
+        relax(v, cell(x, y - 1), kOrthogonal);
+        if (x > 0) relax(v, cell(x - 1, y - 1), kDiagonal);
+        if (x + 1 < kSide) relax(v, cell(x + 1, y - 1), kDiagonal);
+      }
+    }
+  }
+  for (int y = kSide - 1; y >= 0; --y) {
+    for (int x = kSide - 1; x >= 0; --x) {
+      uint8_t& v = cell(x, y);
+      if (x + 1 < kSide) relax(v, cell(x + 1, y), kOrthogonal);
+      if (y + 1 < kSide) {
+        relax(v, cell(x, y + 1), kOrthogonal);
+        if (x + 1 < kSide) relax(v, cell(x + 1, y + 1), kDiagonal);
+        if (x > 0) relax(v, cell(x - 1, y + 1), kDiagonal);
+      }
+    }
+  }
+}
+
+ScanFreeSpace::Cell ScanFreeSpace::cell_of(Point2 world) const {
+  const float fx = (world.x - corner_.x) / kCellM, fy = (world.y - corner_.y) / kCellM;
+  // Not finite, or far beyond the grid: a cell outside it that offsets cannot bring back.
+  if (!(std::fabs(fx) < 1e6f && std::fabs(fy) < 1e6f)) return {-1'000'000, -1'000'000};
+  return {static_cast<int>(std::floor(fx)), static_cast<int>(std::floor(fy))};
+}
+
+ScanFreeSpace::Clearance ScanFreeSpace::at(Cell c) const {
+  if (!built_ || c.x < 0 || c.y < 0 || c.x >= kSide || c.y >= kSide) return Clearance::kNotFree;
+  const uint8_t v = cells_[static_cast<std::size_t>(c.y * kSide + c.x)];
+  if ((v & kSeen) == 0) return Clearance::kNotFree;
+  const uint8_t d = v & kDistance;
+  if (d >= wide_units_) return Clearance::kWide;
+  return d >= near_units_ ? Clearance::kNear : Clearance::kNotFree;
+}
+
+}  // namespace kestrel
