@@ -51,7 +51,8 @@ Status ScanFreeSpace::build(const LaserScan& scan, const Pose2& laser, float nea
     } else {
       continue;  // deflected, dropped out, too near: no word on this direction
     }
-    // Half a cell a step: the direction times 128 in Q8 cell units.
+    // Half a cell a step: the direction times 128 in Q8 cell units. The shift floors: rays lean
+    // towards -x and -y by at most a quarter cell at the grid's edge (flown so, session 45).
     draw_ray(origin_q8, origin_q8, beam_c >> (kOne - 7), beam_s >> (kOne - 7), ray_mm / kHalfCellMm, ends_at_return);
   }
   chamfer();

@@ -181,6 +181,8 @@ void AutonomyStack::take_home_fix() {
   }
   ++counters_.home_fixes;
   slam_frame_.filter_moved(before, filter_.frame_correction());
+  // Fixes come on the way home, after every breadcrumb: today this moves none, but the trail
+  // stays in the filter's frame whatever a fix's stamp.
   estimate_moved(fix.stamp, before);
   nav_ = filter_.state();
 }

@@ -50,12 +50,14 @@ constexpr float kRehomeM = 0.6f;
 // The most one step advances the mission's clock (timers): see step().
 constexpr Duration kMaxClockStep = Duration::from_us(1'000'000);
 // Laying the trail back onto the scan (trail_alignment.hpp): a breadcrumb counts where it is
-// this far from every return, twice where it is the wide distance from them too (a 1.2 m door's
-// middle fifth, where the approach limiter's 0.4 m leaves room either side). At most this many
-// breadcrumbs ahead are laid.
+// this far from every return; among offsets that free as many, those that put more of them the
+// wide distance from the returns win (a 1.2 m door's middle 0.2 m, where the approach limiter's
+// 0.4 m leaves room either side). At most this many breadcrumbs ahead are laid, and at most
+// kMaxRealignments times a mission (the flights that needed it needed it once).
 constexpr float kAlignNearM = 0.3f;
 constexpr float kAlignWideM = 0.5f;
 constexpr std::size_t kAlignWindow = 8;
+constexpr uint32_t kMaxRealignments = 8;
 
 // Where the laser was when the scan was taken (its middle beam): the estimate carried back at
 // its own rates. Turning at the return's 0.5 rad/s, a scan 0.1 s old is 0.05 rad off the
@@ -305,13 +307,18 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         return hold(now, hold_point_, hold_heading_);
       }
       // Stalled a while: the trail ahead may lie off where it was flown; lay it back onto what
-      // the scan shows free, once each return_realign_s (the stall still lands the vehicle).
+      // the scan shows free, once each return_realign_s. The move itself is not progress (the
+      // carrot is measured afresh, the stall's clock runs on), so the stall still lands a
+      // vehicle that does not move, and at most kMaxRealignments moves a mission bound the rest.
       if (params_.return_realign_s > 0 && params_.realign_max_offset_m > 0 && scan != nullptr && estimate_ok &&
-          (t - progress_at_).seconds() >= params_.return_realign_s &&
+          realignments_ < kMaxRealignments && (t - progress_at_).seconds() >= params_.return_realign_s &&
           (t - realigned_at_).seconds() >= params_.return_realign_s) {
         realigned_at_ = t;
-        align_trail_with_scan(nav, *scan);
-        target = breadcrumb(return_index_);
+        if (align_trail_with_scan(nav, *scan)) {
+          target = breadcrumb(return_index_);
+          progress_index_ = return_index_;
+          progress_distance_ = (target - nav.position_m).head<2>().norm();
+        }
       }
       // Velocity set-points, so that the composition can bound them against the laser's
       // returns (the trail was drawn in the estimate's frame, which may have drifted since), and
@@ -387,9 +394,9 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
   return hold(now, hold_point_, hold_heading_);
 }
 
-void MissionController::align_trail_with_scan(const NavState& nav, const LaserScan& scan) {
-  if (return_index_ == 0) return;  // home itself is next: it does not move
-  if (free_space_.build(scan, laser_at_scan(nav, scan), kAlignNearM, kAlignWideM) != Status::kOk) return;
+bool MissionController::align_trail_with_scan(const NavState& nav, const LaserScan& scan) {
+  if (return_index_ == 0) return false;  // home itself is next: it does not move
+  if (free_space_.build(scan, laser_at_scan(nav, scan), kAlignNearM, kAlignWideM) != Status::kOk) return false;
   // The next breadcrumbs, while near enough that the scan can show them free at any offset.
   const float reach = ScanFreeSpace::kReachM - params_.realign_max_offset_m;
   std::array<Point2, kAlignWindow> ahead;
@@ -403,9 +410,10 @@ void MissionController::align_trail_with_scan(const NavState& nav, const LaserSc
   if (n == 0 || !find_trail_offset(free_space_, {ahead.data(), n}, params_.realign_max_offset_m,
                                    {params_.keep_out.data(), params_.keep_out_count}, params_.shortcut_clearance_m,
                                    offset))
-    return;
+    return false;
   trail_.move_points(return_index_ + 1 - n, return_index_, offset);
   ++realignments_;
+  return true;
 }
 
 Eigen::Vector3f MissionController::breadcrumb(std::size_t i) const {

@@ -8,8 +8,8 @@
 //
 // For the flight home's stall (mission/trail_alignment.hpp): hundreds of points are asked
 // about once, so the scan is drawn once and each point is a look-up, in whole cells where the
-// caller can. Integer rays (Q8 fixed point, a cell a step along the major axis), one rotation
-// per beam, and the 3-4 chamfer distance to the returns (Borgefors 1986: within 8 % of the
+// caller can. Integer rays (Q8 fixed point, half a cell a step), one integer rotation per
+// beam, and the 3-4 chamfer distance to the returns (Borgefors 1986: within 8 % of the
 // Euclidean, so a clearance may be met a few centimetres short), for the FPU-less Verdex.
 #include <array>
 #include <cstdint>

@@ -86,10 +86,11 @@ struct MissionParams {
   float breadcrumb_spacing_m = 0.4f;
   bool return_shortcut = true;         // leave the trail where the scan shows a way nearer home
   float shortcut_clearance_m = 0.45f;  // ... clear by this (the approach limiter stops at 0.4 m)
-  // Stalled on the way home this long, the next breadcrumbs (up to 8, within the scan's 3.1 m)
-  // are laid back onto the free space the newest scan shows, moved by at most
-  // realign_max_offset_m (mission/trail_alignment.hpp); again after as long again while the
-  // stall lasts. 0: never.
+  // Stalled on the way home this long, the next breadcrumbs (up to 8, within 3.1 m of the
+  // vehicle less realign_max_offset_m) are laid back onto the free space the newest scan shows,
+  // moved by at most realign_max_offset_m (mission/trail_alignment.hpp); again after as long
+  // again while the stall lasts. 0: never (as is anything from return_stall_s on: the stall
+  // lands the vehicle first).
   float return_realign_s = 5.0f;
   float realign_max_offset_m = 0.8f;  // at most 1
   // ... and entering none of these boxes grown by that clearance: the laser sees through glass,
@@ -161,8 +162,9 @@ class MissionController {
   // Examines the next breadcrumbs nearer home than return_index_ and checks the first within
   // the scan's reach; a clear way makes it the target.
   void look_for_shortcut(const NavState& nav, const LaserScan& scan);
-  // Moves the next breadcrumbs to where the scan shows free space (trail_alignment.hpp).
-  void align_trail_with_scan(const NavState& nav, const LaserScan& scan);
+  // Moves the next breadcrumbs to where the scan shows free space (trail_alignment.hpp); true
+  // when it moved them.
+  bool align_trail_with_scan(const NavState& nav, const LaserScan& scan);
 
   MissionKind kind_ = MissionKind::kHover;
   MissionParams params_;
