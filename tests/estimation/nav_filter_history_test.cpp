@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <memory>
 
 #include "kestrel/estimation/nav_filter.hpp"
@@ -173,6 +174,44 @@ TEST(NavFilterHistory, SecondsOldCorrectionShiftsThePresentState) {
   EXPECT_NEAR(end.position_m.y(), truth_corrected.y, 0.03f);
   EXPECT_NEAR(angle_diff(end.heading_rad, truth_corrected.theta), 0.0f, 0.01f);
   EXPECT_EQ(filter->counters().pose_rejected, 0u);
+}
+
+// GIVEN a filter whose frame a rotated correction has already moved WHEN a second correction
+// comes THEN frame_correction() after * before^-1 is the rigid move of the present state: the
+// move AutonomyStack::estimate_moved hands the mission for the breadcrumbs drawn since (the
+// other order of composition is centimetres off, and the test tells them apart).
+TEST(NavFilterHistory, FrameCorrectionsComposeToThePresentStatesMove) {
+  SyntheticConfig c;
+  c.duration_s = 10.0;
+  c.seed = 8;
+  const auto fl = make_flight(c);
+  auto filter = std::make_unique<NavFilter>(matched_params(c));
+  StreamPlayer player(fl, Duration{});
+  const auto pose_of = [](const NavState& s) { return Pose2{s.position_m.x(), s.position_m.y(), s.heading_rad}; };
+  const auto correct = [&](const NavState& then, const Pose2& d) {
+    PoseMeasurement2 corr;
+    corr.stamp = then.stamp;
+    corr.pose = d.compose(pose_of(then));
+    return filter->apply_correction(corr);
+  };
+  player.play_until(*filter, TimeUs::from_s(5.0));
+  const NavState first_then = filter->state();
+  player.play_until(*filter, TimeUs::from_s(6.0));
+  ASSERT_EQ(correct(first_then, {0.3f, -0.2f, 0.3f}), Status::kOk);
+  player.play_until(*filter, TimeUs::from_s(8.0));
+  const NavState second_then = filter->state();
+  player.play_until(*filter, TimeUs::from_s(9.0));
+  const Pose2 frame_before = filter->frame_correction();
+  const Pose2 before = pose_of(filter->state());
+  ASSERT_EQ(correct(second_then, {-0.4f, 0.25f, -0.08f}), Status::kOk);
+  const Pose2 after = pose_of(filter->state());
+  const Pose2 frame_after = filter->frame_correction();
+  const Pose2 moved = frame_after.compose(frame_before.inverse()).compose(before);
+  EXPECT_NEAR(moved.x, after.x, 0.005f);
+  EXPECT_NEAR(moved.y, after.y, 0.005f);
+  EXPECT_NEAR(angle_diff(moved.theta, after.theta), 0.0f, 0.002f);
+  const Pose2 other_order = frame_before.inverse().compose(frame_after).compose(before);
+  EXPECT_GT(std::hypot(other_order.x - after.x, other_order.y - after.y), 0.05f);
 }
 
 // A correction beyond max_correction_m is refused and changes nothing; one older than the
