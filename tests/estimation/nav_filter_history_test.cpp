@@ -17,6 +17,16 @@ using test::matched_params;
 using test::StreamPlayer;
 using test::SyntheticConfig;
 
+Pose2 pose_of(const NavState& s) { return {s.position_m.x(), s.position_m.y(), s.heading_rad}; }
+
+// A SLAM correction saying the vehicle was off by `d` (new = d * old) when the filter stood at `then`.
+PoseMeasurement2 correction_of(const NavState& then, const Pose2& d) {
+  PoseMeasurement2 corr;
+  corr.stamp = then.stamp;
+  corr.pose = d.compose(pose_of(then));
+  return corr;
+}
+
 void expect_same_state(const NavFilter& a, const NavFilter& b, float tol) {
   for (int ax = 0; ax < 3; ++ax) {
     for (int i = 0; i < 3; ++i) {
@@ -147,13 +157,10 @@ TEST(NavFilterHistory, SecondsOldCorrectionShiftsThePresentState) {
   const NavState before = filter->state();
 
   const Pose2 d{0.5f, -0.3f, 0.1f};
-  PoseMeasurement2 corr;
-  corr.stamp = then.stamp;
-  corr.pose = d.compose(Pose2{then.position_m.x(), then.position_m.y(), then.heading_rad});
-  ASSERT_EQ(filter->apply_correction(corr), Status::kOk);
+  ASSERT_EQ(filter->apply_correction(correction_of(then, d)), Status::kOk);
   const NavState after = filter->state();
   EXPECT_EQ(after.stamp, before.stamp);
-  const Pose2 expected = d.compose(Pose2{before.position_m.x(), before.position_m.y(), before.heading_rad});
+  const Pose2 expected = d.compose(pose_of(before));
   EXPECT_NEAR(after.position_m.x(), expected.x, 0.005f);
   EXPECT_NEAR(after.position_m.y(), expected.y, 0.005f);
   EXPECT_NEAR(angle_diff(after.heading_rad, expected.theta), 0.0f, 0.002f);
@@ -187,23 +194,16 @@ TEST(NavFilterHistory, FrameCorrectionsComposeToThePresentStatesMove) {
   const auto fl = make_flight(c);
   auto filter = std::make_unique<NavFilter>(matched_params(c));
   StreamPlayer player(fl, Duration{});
-  const auto pose_of = [](const NavState& s) { return Pose2{s.position_m.x(), s.position_m.y(), s.heading_rad}; };
-  const auto correct = [&](const NavState& then, const Pose2& d) {
-    PoseMeasurement2 corr;
-    corr.stamp = then.stamp;
-    corr.pose = d.compose(pose_of(then));
-    return filter->apply_correction(corr);
-  };
   player.play_until(*filter, TimeUs::from_s(5.0));
   const NavState first_then = filter->state();
   player.play_until(*filter, TimeUs::from_s(6.0));
-  ASSERT_EQ(correct(first_then, {0.3f, -0.2f, 0.3f}), Status::kOk);
+  ASSERT_EQ(filter->apply_correction(correction_of(first_then, {0.3f, -0.2f, 0.3f})), Status::kOk);
   player.play_until(*filter, TimeUs::from_s(8.0));
   const NavState second_then = filter->state();
   player.play_until(*filter, TimeUs::from_s(9.0));
   const Pose2 frame_before = filter->frame_correction();
   const Pose2 before = pose_of(filter->state());
-  ASSERT_EQ(correct(second_then, {-0.4f, 0.25f, -0.08f}), Status::kOk);
+  ASSERT_EQ(filter->apply_correction(correction_of(second_then, {-0.4f, 0.25f, -0.08f})), Status::kOk);
   const Pose2 after = pose_of(filter->state());
   const Pose2 frame_after = filter->frame_correction();
   const Pose2 moved = frame_after.compose(frame_before.inverse()).compose(before);
@@ -257,9 +257,8 @@ TEST(NavFilterHistory, PoseOlderThanACorrectionStaysInItsFrame) {
   StreamPlayer player(fl, Duration{});
   player.play_until(*a, TimeUs::from_s(5.2));
   const NavState at = a->state();
-  PoseMeasurement2 corr;
-  corr.stamp = TimeUs::from_s(5.1);
-  corr.pose = Pose2{0.3f, 0.0f, 0.0f}.compose(Pose2{at.position_m.x(), at.position_m.y(), at.heading_rad});
+  PoseMeasurement2 corr = correction_of(at, {0.3f, 0.0f, 0.0f});
+  corr.stamp = TimeUs::from_s(5.1);  // a little before the state it was drawn from
   ASSERT_EQ(a->apply_correction(corr), Status::kOk);
   const uint32_t rejected = a->counters().pose_rejected;
   EXPECT_EQ(a->update_pose(late_pose), Status::kOk);  // not gated out as a 0.3 m jump
