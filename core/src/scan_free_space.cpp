@@ -15,6 +15,11 @@ int32_t q30(float v) { return static_cast<int32_t>(std::lround(static_cast<doubl
 int32_t rotate(int32_t a, int32_t b, int32_t ca, int32_t sb) {
   return static_cast<int32_t>((static_cast<int64_t>(a) * ca - static_cast<int64_t>(b) * sb) >> kOne);
 }
+// A Q30 direction component as the Q8 step of half a cell, rounded to nearest.
+int32_t half_cell_step(int32_t component_q30) {
+  constexpr int kShift = kOne - 7;
+  return (component_q30 + (1 << (kShift - 1))) >> kShift;
+}
 uint8_t units_of(float metres) {
   return static_cast<uint8_t>(std::ceil(metres / ScanFreeSpace::kCellM * kOrthogonal - 1e-4f));
 }
@@ -51,9 +56,9 @@ Status ScanFreeSpace::build(const LaserScan& scan, const Pose2& laser, float nea
     } else {
       continue;  // deflected, dropped out, too near: no word on this direction
     }
-    // Half a cell a step: the direction times 128 in Q8 cell units. The shift floors: rays lean
-    // towards -x and -y by at most a quarter cell at the grid's edge (flown so, session 45).
-    draw_ray(origin_q8, origin_q8, beam_c >> (kOne - 7), beam_s >> (kOne - 7), ray_mm / kHalfCellMm, ends_at_return);
+    // Half a cell a step: the direction times 128 in Q8 cell units, rounded (a floor would lean
+    // every ray towards -x and -y, by up to a quarter cell at the grid's edge).
+    draw_ray(origin_q8, origin_q8, half_cell_step(beam_c), half_cell_step(beam_s), ray_mm / kHalfCellMm, ends_at_return);
   }
   chamfer();
   built_ = true;

@@ -459,14 +459,19 @@ JambFlight fly_home_beside_a_jamb(float realign_s) {
     const Eigen::Vector3f before = r.v.nav.position_m;
     r.v.follow(s, MissionRun::kDt);
     r.v.nav.heading_rad = s.heading_rad;
-    // Held 0.4 m off the walls: what the step would bring nearer is dropped, axis by axis.
+    // Held 0.4 m off the walls: the part of the step towards the nearest wall (against the
+    // gradient of the clearance) is dropped, so the vehicle slides along walls and round a
+    // jamb's end as the limiter lets it; what would still come nearer is not flown.
     if (held_off(r.v.nav.position_m)) {
-      Eigen::Vector3f slid = before;
-      slid.x() = r.v.nav.position_m.x();
-      if (held_off(slid)) slid.x() = before.x();
-      slid.y() = r.v.nav.position_m.y();
-      if (held_off(slid)) slid.y() = before.y();
-      r.v.nav.position_m = slid;
+      const Eigen::Vector2f at = before.head<2>() + drift;
+      constexpr double kH = 1e-3;
+      Eigen::Vector2f away(static_cast<float>(world.clearance(at.x() + kH, at.y()) - world.clearance(at.x() - kH, at.y())),
+                           static_cast<float>(world.clearance(at.x(), at.y() + kH) - world.clearance(at.x(), at.y() - kH)));
+      away.normalize();
+      Eigen::Vector3f step = r.v.nav.position_m - before;
+      const float towards = step.head<2>().dot(away);
+      if (towards < 0.0f) step.head<2>() -= towards * away;
+      r.v.nav.position_m = held_off(before + step) ? before : Eigen::Vector3f(before + step);
     }
   }
   out.home = r.mc.returned_home();
