@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kestrel/core/chamfer_distance.hpp"
+
 namespace kestrel {
 namespace {
 constexpr int32_t kCellMm = 100;  // ScanFreeSpace::kCellM
 constexpr int32_t kHalfCellMm = kCellMm / 2;
 constexpr int32_t kReachMm = kCellMm * (ScanFreeSpace::kSide / 2 - 1);
 constexpr int kOne = 30;  // beam directions in Q30
-constexpr uint8_t kOrthogonal = 3, kDiagonal = 4;  // chamfer steps, in thirds of a cell
 
 int32_t q30(float v) { return static_cast<int32_t>(std::lround(static_cast<double>(v) * (1 << kOne))); }
 int32_t rotate(int32_t a, int32_t b, int32_t ca, int32_t sb) {
@@ -19,9 +20,6 @@ int32_t rotate(int32_t a, int32_t b, int32_t ca, int32_t sb) {
 int32_t half_cell_step(int32_t component_q30) {
   constexpr int kShift = kOne - 7;
   return (component_q30 + (1 << (kShift - 1))) >> kShift;
-}
-uint8_t units_of(float metres) {
-  return static_cast<uint8_t>(std::ceil(metres / ScanFreeSpace::kCellM * kOrthogonal - 1e-4f));
 }
 }  // namespace
 
@@ -34,8 +32,8 @@ Status ScanFreeSpace::build(const LaserScan& scan, const Pose2& laser, float nea
     return Status::kInvalidArgument;
   constexpr float kHalfM = kCellM * (kSide / 2);
   corner_ = {laser.x - kHalfM, laser.y - kHalfM};
-  near_units_ = units_of(near_m);
-  wide_units_ = units_of(wide_m);
+  near_units_ = chamfer::units_of(near_m, kCellM, kDistance);
+  wide_units_ = chamfer::units_of(wide_m, kCellM, kDistance);
   // Beam directions by an integer rotation: two trigonometric pairs in all.
   int32_t c = q30(std::cos(laser.theta + scan.first_angle_rad)), s = q30(std::sin(laser.theta + scan.first_angle_rad));
   const int32_t step_c = q30(std::cos(scan.angle_step_rad)), step_s = q30(std::sin(scan.angle_step_rad));
@@ -78,32 +76,17 @@ void ScanFreeSpace::draw_ray(int32_t x_q8, int32_t y_q8, int32_t step_x_q8, int3
 }
 
 void ScanFreeSpace::chamfer() {
-  const auto relax = [](uint8_t& v, uint8_t from, uint8_t step) {
-    const int d = (from & kDistance) + step;
-    if (d < (v & kDistance)) v = static_cast<uint8_t>((v & kSeen) | d);
+  // Seven bits of distance beside the flag of a ray's crossing, which stays.
+  struct Distances {
+    ScanFreeSpace& grid;
+    int distance(int x, int y) const { return grid.cell(x, y) & kDistance; }
+    void lower(int x, int y, int d) {
+      uint8_t& v = grid.cell(x, y);
+      v = static_cast<uint8_t>((v & kSeen) | d);
+    }
   };
-  for (int y = 0; y < kSide; ++y) {
-    for (int x = 0; x < kSide; ++x) {
-      uint8_t& v = cell(x, y);
-      if (x > 0) relax(v, cell(x - 1, y), kOrthogonal);
-      if (y > 0) {
-        relax(v, cell(x, y - 1), kOrthogonal);
-        if (x > 0) relax(v, cell(x - 1, y - 1), kDiagonal);
-        if (x + 1 < kSide) relax(v, cell(x + 1, y - 1), kDiagonal);
-      }
-    }
-  }
-  for (int y = kSide - 1; y >= 0; --y) {
-    for (int x = kSide - 1; x >= 0; --x) {
-      uint8_t& v = cell(x, y);
-      if (x + 1 < kSide) relax(v, cell(x + 1, y), kOrthogonal);
-      if (y + 1 < kSide) {
-        relax(v, cell(x, y + 1), kOrthogonal);
-        if (x + 1 < kSide) relax(v, cell(x + 1, y + 1), kDiagonal);
-        if (x > 0) relax(v, cell(x - 1, y + 1), kDiagonal);
-      }
-    }
-  }
+  Distances cells{*this};
+  chamfer::propagate(cells, 0, 0, kSide - 1, kSide - 1);
 }
 
 ScanFreeSpace::Cell ScanFreeSpace::cell_of(Point2 world) const {

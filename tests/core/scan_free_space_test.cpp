@@ -21,18 +21,21 @@ ScanFreeSpace built(const SegmentWorld& w, const Pose2& at, const LaserModel& m 
   return f;
 }
 
+bool free(const ScanFreeSpace& f, Point2 p) { return f.at(f.cell_of(p)) != ScanFreeSpace::Clearance::kNotFree; }
+bool free_wide(const ScanFreeSpace& f, Point2 p) { return f.at(f.cell_of(p)) == ScanFreeSpace::Clearance::kWide; }
+
 TEST(ScanFreeSpace, FreeWhereRaysPassedClearOfTheReturns) {
   const Pose2 at{4.6f, 8.55f, static_cast<float>(M_PI / 2)};  // beside the door, facing north
   const ScanFreeSpace f = built(corridor_with_a_door(), at);
-  EXPECT_TRUE(f.free({3.0f, 8.0f}));        // the corridor, 1 m from both walls
-  EXPECT_TRUE(f.free_wide({3.0f, 8.0f}));
-  EXPECT_TRUE(f.free({5.6f, 9.6f}));        // through the door, in the room
-  EXPECT_FALSE(f.free({4.6f, 9.2f}));       // behind the wall it faces
-  EXPECT_FALSE(f.free({3.0f, 8.8f}));       // 0.2 m from the wall: within the near clearance
-  EXPECT_TRUE(f.free({3.0f, 8.6f}));        // 0.4 m: clear by the near one...
-  EXPECT_FALSE(f.free_wide({3.0f, 8.6f}));  // ...not by the wide one (a cell is 0.1 m)
-  EXPECT_FALSE(f.free({5.05f, 9.0f}));      // the jamb
-  EXPECT_FALSE(f.free({4.6f + 3.3f, 8.0f}));  // beyond the grid
+  EXPECT_TRUE(free(f, {3.0f, 8.0f}));        // the corridor, 1 m from both walls
+  EXPECT_TRUE(free_wide(f, {3.0f, 8.0f}));
+  EXPECT_TRUE(free(f, {5.6f, 9.6f}));        // through the door, in the room
+  EXPECT_FALSE(free(f, {4.6f, 9.2f}));       // behind the wall it faces
+  EXPECT_FALSE(free(f, {3.0f, 8.8f}));       // 0.2 m from the wall: within the near clearance
+  EXPECT_TRUE(free(f, {3.0f, 8.6f}));        // 0.4 m: clear by the near one...
+  EXPECT_FALSE(free_wide(f, {3.0f, 8.6f}));  // ...not by the wide one (a cell is 0.1 m)
+  EXPECT_FALSE(free(f, {5.05f, 9.0f}));      // the jamb
+  EXPECT_FALSE(free(f, {4.6f + 3.3f, 8.0f}));  // beyond the grid
 }
 
 // Behind the vehicle, where the URG-04LX's 240 degrees do not look, and in the directions of
@@ -40,19 +43,19 @@ TEST(ScanFreeSpace, FreeWhereRaysPassedClearOfTheReturns) {
 TEST(ScanFreeSpace, UnseenAndSilentDirectionsAreNotFree) {
   const SegmentWorld w = corridor_with_a_door();
   const Pose2 at{3.0f, 8.0f, 0.0f};  // facing east along the corridor
-  EXPECT_FALSE(built(w, at).free({1.5f, 8.0f}));  // straight behind: outside the field of view
+  EXPECT_FALSE(free(built(w, at), {1.5f, 8.0f}));  // straight behind: outside the field of view
   LaserScan scan = w.scan(LaserModel::urg04lx(), at.x, at.y, at.theta);
   ScanFreeSpace f;
   ASSERT_EQ(f.build(scan, at, 0.3f, 0.5f), Status::kOk);
-  ASSERT_TRUE(f.free({4.5f, 8.0f}));
+  ASSERT_TRUE(free(f, {4.5f, 8.0f}));
   for (uint16_t i = 321; i <= 361; ++i) scan.range_mm[i] = range_code::kDeflected;  // +-7 degrees ahead
   ASSERT_EQ(f.build(scan, at, 0.3f, 0.5f), Status::kOk);
-  EXPECT_FALSE(f.free({4.5f, 8.0f}));
-  EXPECT_TRUE(f.free({4.0f, 7.6f}));  // beside the silent fan, seen by its neighbours
+  EXPECT_FALSE(free(f, {4.5f, 8.0f}));
+  EXPECT_TRUE(free(f, {4.0f, 7.6f}));  // beside the silent fan, seen by its neighbours
   // Nothing in range is open space.
   for (uint16_t i = 0; i < scan.beam_count; ++i) scan.range_mm[i] = range_code::kNoReturn;
   ASSERT_EQ(f.build(scan, at, 0.3f, 0.5f), Status::kOk);
-  EXPECT_TRUE(f.free_wide({5.5f, 8.0f}));
+  EXPECT_TRUE(free_wide(f, {5.5f, 8.0f}));
 }
 
 TEST(ScanFreeSpace, BadInputsLeaveNothingFree) {
@@ -62,7 +65,7 @@ TEST(ScanFreeSpace, BadInputsLeaveNothingFree) {
   ScanFreeSpace f;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   EXPECT_EQ(f.build(scan, {nan, 8.0f, 0.0f}, 0.3f, 0.5f), Status::kInvalidArgument);
-  EXPECT_FALSE(f.free({4.0f, 8.0f}));
+  EXPECT_FALSE(free(f, {4.0f, 8.0f}));
   EXPECT_EQ(f.build(scan, at, 0.0f, 0.5f), Status::kInvalidArgument);
   EXPECT_EQ(f.build(scan, at, 0.5f, 0.3f), Status::kInvalidArgument);  // wide below near
   EXPECT_EQ(f.build(scan, at, 0.3f, 1.5f), Status::kInvalidArgument);
@@ -72,8 +75,8 @@ TEST(ScanFreeSpace, BadInputsLeaveNothingFree) {
   LaserScan flat = scan;
   flat.angle_step_rad = 0.0f;
   EXPECT_EQ(f.build(flat, at, 0.3f, 0.5f), Status::kInvalidArgument);
-  EXPECT_FALSE(f.free({4.0f, 8.0f}));
-  EXPECT_FALSE(f.free({nan, 8.0f}));
+  EXPECT_FALSE(free(f, {4.0f, 8.0f}));
+  EXPECT_FALSE(free(f, {nan, 8.0f}));
 }
 
 }  // namespace

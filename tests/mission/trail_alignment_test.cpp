@@ -39,7 +39,8 @@ TEST(TrailAlignment, MovesATrailThroughTheWallIntoTheDoorBesideIt) {
   // Free, but for the last, which the wall hides from where the vehicle is, moved or not.
   for (std::size_t i = 0; i + 1 < kTrailThroughTheWall.size(); ++i) {
     const Point2 b = kTrailThroughTheWall[i];
-    EXPECT_TRUE(s.free_space.free({b.x + offset.x, b.y + offset.y})) << i;
+    const ScanFreeSpace::Cell moved = s.free_space.cell_of({b.x + offset.x, b.y + offset.y});
+    EXPECT_NE(s.free_space.at(moved), ScanFreeSpace::Clearance::kNotFree) << i;
   }
   // Allowed only 0.2 m, nothing is better than the trail as it lies.
   EXPECT_FALSE(find_trail_offset(s.free_space, kTrailThroughTheWall, 0.2f, {}, 0.45f, offset));

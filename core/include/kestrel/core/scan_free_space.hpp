@@ -9,8 +9,8 @@
 // For the flight home's stall (mission/trail_alignment.hpp): hundreds of points are asked
 // about once, so the scan is drawn once and each point is a look-up, in whole cells where the
 // caller can. Integer rays (Q8 fixed point, half a cell a step), one integer rotation per
-// beam, and the 3-4 chamfer distance to the returns (Borgefors 1986: within 8 % of the
-// Euclidean, so a clearance may be met a few centimetres short), for the FPU-less Verdex.
+// beam, and the 3-4 chamfer distance to the returns (core/chamfer_distance.hpp: within 8 % of
+// the Euclidean, so a clearance may be met a few centimetres short), for the FPU-less Verdex.
 #include <array>
 #include <cstdint>
 
@@ -40,8 +40,6 @@ class ScanFreeSpace {
   Cell cell_of(Point2 world) const;
   // Seen by a ray and at least near_m (kNear) or wide_m too (kWide) from every return.
   Clearance at(Cell c) const;
-  bool free(Point2 world) const { return at(cell_of(world)) != Clearance::kNotFree; }
-  bool free_wide(Point2 world) const { return at(cell_of(world)) == Clearance::kWide; }
 
  private:
   static constexpr uint8_t kSeen = 0x80;     // a ray crossed the cell

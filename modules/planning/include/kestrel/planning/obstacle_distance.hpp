@@ -1,12 +1,14 @@
 #pragma once
 // How far every cell is from the nearest occupied cell, for the planner's clearance: the 3-4
-// chamfer distance (Borgefors 1986; within 8 % of the Euclidean), two raster passes over a box
-// of the grid, integer only. In units of a third of a cell, saturating at kFar (85 cells).
+// chamfer distance (core/chamfer_distance.hpp) over a box of the grid. In units of a third of
+// a cell, saturating at kFar (85 cells).
 // Cells outside the box are not computed and read as kFar; unknown cells are not obstacles
 // here (the planner never enters them anyway).
 #include <array>
 #include <cstdint>
 #include <span>
+
+#include "kestrel/core/chamfer_distance.hpp"
 
 #include "kestrel/planning/grid_geometry.hpp"
 #include "kestrel/planning/occupancy_grid.hpp"
@@ -15,7 +17,7 @@ namespace kestrel::planning {
 
 class ObstacleDistance {
  public:
-  static constexpr uint8_t kPerCell = 3;
+  static constexpr uint8_t kPerCell = chamfer::kPerCell;
   static constexpr uint8_t kFar = 255;
 
   // Seeds are the grid's occupied cells and every cell of the `blocked` boxes (operator
