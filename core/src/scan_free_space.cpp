@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kestrel/core/chamfer_distance.hpp"
+#include "kestrel/core/fixed_point.hpp"
 
 namespace kestrel {
 namespace {
@@ -16,10 +17,10 @@ int32_t q30(float v) { return static_cast<int32_t>(std::lround(static_cast<doubl
 int32_t rotate(int32_t a, int32_t b, int32_t ca, int32_t sb) {
   return static_cast<int32_t>((static_cast<int64_t>(a) * ca - static_cast<int64_t>(b) * sb) >> kOne);
 }
-// A Q30 direction component as the Q8 step of half a cell, rounded to nearest.
+// A Q30 direction component as the Q8 step of half a cell, rounded to nearest with ties away
+// from zero, so that a beam and its mirror image step alike.
 int32_t half_cell_step(int32_t component_q30) {
-  constexpr int kShift = kOne - 7;
-  return (component_q30 + (1 << (kShift - 1))) >> kShift;
+  return static_cast<int32_t>(fixed_detail::round_shift(component_q30, kOne - 7));
 }
 }  // namespace
 

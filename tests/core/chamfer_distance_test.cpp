@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <utility>
 
 namespace kestrel::chamfer {
 namespace {
@@ -58,20 +59,23 @@ TEST(ChamferDistance, IsTheNearestSeedsThreeFourDistanceForRandomSeeds) {
   }
 }
 
-// Cells outside the box are neither read (a seed there is not seen) nor written; distances
-// inside saturate at the cap the cells held.
+// Cells outside the box are neither read (a seed there, touching every side, is not seen) nor
+// written; distances inside saturate at the cap the cells held.
 TEST(ChamferDistance, KeepsToItsBoxAndSaturatesAtTheCap) {
   Grid g;
   g.d.fill(40);
-  g.lower(2, 2, 0);    // outside the box: no seed for it
-  g.lower(6, 6, 0);    // inside
+  for (const auto& [x, y] : {std::pair{4, 10}, {21, 10}, {12, 4}, {12, 16}, {4, 4}, {21, 16}}) g.lower(x, y, 0);
+  g.lower(6, 6, 0);  // inside
   propagate(g, 5, 5, 20, 15);
-  EXPECT_EQ(g.distance(2, 2), 0);
-  EXPECT_EQ(g.distance(4, 4), 40);  // untouched
-  EXPECT_EQ(g.distance(21, 10), 40);
-  EXPECT_EQ(g.distance(5, 5), oracle(1, 1));  // from (6, 6), not (2, 2)
+  EXPECT_EQ(g.distance(4, 10), 0);   // untouched
+  EXPECT_EQ(g.distance(4, 11), 40);
+  EXPECT_EQ(g.distance(21, 11), 40);
+  EXPECT_EQ(g.distance(5, 5), oracle(1, 1));  // from (6, 6), not (4, 4)
+  EXPECT_EQ(g.distance(5, 10), oracle(1, 4));
+  EXPECT_EQ(g.distance(12, 5), oracle(6, 1));
   EXPECT_EQ(g.distance(9, 6), 9);
-  EXPECT_EQ(g.distance(16, 6), 30);
+  EXPECT_EQ(g.distance(12, 15), 33);  // 3 * 9 + 6, not 3 from (12, 16)
+  EXPECT_EQ(g.distance(20, 10), 40);  // 3 * 14 + 4 = 46, saturated; not 3 from (21, 10)
   EXPECT_EQ(g.distance(20, 15), 40);  // 3 * 14 + 9 = 51, saturated
 }
 
@@ -85,6 +89,8 @@ TEST(ChamferDistance, UnitsOfMetresRoundUpAndSaturate) {
   EXPECT_EQ(units_of(0.5f, 0.0f, 127), 0);
   EXPECT_EQ(units_of(100.0f, 0.1f, 127), 127);
   EXPECT_EQ(units_of(INFINITY, 0.1f, 127), 127);
+  EXPECT_EQ(units_of(INFINITY, INFINITY, 127), 127);  // NaN on the way: no cast of it
+  EXPECT_EQ(units_of(1e-7f, 0.1f, 127), 1);            // positive: never met on a seed
 }
 
 }  // namespace

@@ -58,6 +58,38 @@ TEST(ScanFreeSpace, UnseenAndSilentDirectionsAreNotFree) {
   EXPECT_TRUE(free_wide(f, {5.5f, 8.0f}));
 }
 
+// GIVEN a round room (radius 2.5 m) centred on a laser that sees all round WHEN drawn at any
+// heading THEN its free cells are centred on the laser: the rays do not lean. (A floored Q8 step
+// leaned them towards -x and -y, the centroid a tenth of a cell off.)
+TEST(ScanFreeSpace, ARoundRoomsFreeSpaceIsCentredOnTheLaser) {
+  const Point2 centre{5.0f, -2.0f};
+  SegmentWorld room;
+  constexpr int kSides = 64;
+  for (int k = 0; k < kSides; ++k) {
+    const double a0 = 2.0 * M_PI * k / kSides, a1 = 2.0 * M_PI * (k + 1) / kSides;
+    room.add(centre.x + 2.5 * std::cos(a0), centre.y + 2.5 * std::sin(a0), centre.x + 2.5 * std::cos(a1),
+             centre.y + 2.5 * std::sin(a1));
+  }
+  const LaserModel all_round{1080, 2.0 * M_PI, 4000};
+  for (const float heading : {0.0f, 0.3f, 1.0f, 2.5f, -2.0f}) {
+    const ScanFreeSpace f = built(room, {centre.x, centre.y, heading}, all_round);
+    constexpr int kLaser = ScanFreeSpace::kSide / 2;  // the laser at this cell's lower-left corner
+    double sum_x = 0.0, sum_y = 0.0;
+    int n = 0;
+    for (int y = 0; y < ScanFreeSpace::kSide; ++y) {
+      for (int x = 0; x < ScanFreeSpace::kSide; ++x) {
+        if (f.at({x, y}) == ScanFreeSpace::Clearance::kNotFree) continue;
+        sum_x += x - kLaser;
+        sum_y += y - kLaser;
+        ++n;
+      }
+    }
+    ASSERT_GT(n, 1000) << heading;  // pi (2.5 - 0.3)^2 m^2 is about 1,500 cells
+    EXPECT_NEAR(sum_x / n + 0.5, 0.0, 0.02) << heading;
+    EXPECT_NEAR(sum_y / n + 0.5, 0.0, 0.02) << heading;
+  }
+}
+
 TEST(ScanFreeSpace, BadInputsLeaveNothingFree) {
   const SegmentWorld w = corridor_with_a_door();
   const Pose2 at{3.0f, 8.0f, 0.0f};

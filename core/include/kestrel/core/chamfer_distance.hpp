@@ -16,11 +16,13 @@ inline constexpr int kDiagonal = 4;  // a diagonal step
 
 // A distance in metres as chamfer units of cells of cell_m, rounded up (so that "at least this
 // far" stays true) but not for float noise (0.36 m of 12 cm cells is 9 units, not 10),
-// saturating at cap; 0 for a distance or cell that is not positive (or NaN).
+// saturating at cap; at least 1 for any positive distance (a clearance is never met on a seed);
+// 0 for a distance or cell that is not positive (or NaN).
 inline uint8_t units_of(float metres, float cell_m, uint8_t cap) {
   if (!(metres > 0.0f) || !(cell_m > 0.0f)) return 0;
   const float u = std::ceil(metres / cell_m * static_cast<float>(kPerCell) - 1e-4f);
-  return u >= static_cast<float>(cap) ? cap : static_cast<uint8_t>(u);
+  if (!(u < static_cast<float>(cap))) return cap;  // also inf / inf
+  return u < 1.0f ? 1 : static_cast<uint8_t>(u);
 }
 
 // What the passes read and write: a cell's distance, and a smaller one stored in its place.
