@@ -12,15 +12,17 @@
 // that the return phase flies back along. Return, and the landing after it, fly velocity
 // set-points, which the composition bounds against the laser's returns.
 //
-// The trail is drawn in the estimate's frame as it was when each breadcrumb was recorded: a
-// SLAM correction or drift since moves the vehicle's frame and not the trail, so a breadcrumb
-// can come to lie beyond a wall (gt-building, URG-04LX: flights with the estimate within 0.1 m
-// at the end held 0.4 m off the corridor's wall beside the north-west door, its breadcrumbs
-// behind it, until the stall landed them 2.7 m from home). So on the way home, given the newest
-// scan, the mission leaves the trail for the breadcrumb nearest home (home itself first) to
-// which the scan shows a straight way clear by shortcut_clearance_m (straight_path_clear) and
-// which enters no keep-out box: one such check a step, the breadcrumbs within the laser's reach
-// examined in turn.
+// The trail is drawn in the estimate's frame: a correction the filter takes later (SLAM, home
+// fix) moves the breadcrumbs recorded since its stamp with the estimate (estimate_moved), but
+// drift no correction caught leaves them where the estimate was, so a breadcrumb can come to
+// lie beyond a wall (gt-building, URG-04LX: flights with the estimate within 0.1 m at the end
+// held 0.4 m off the corridor's wall beside the north-west door, its breadcrumbs behind it,
+// until the stall landed them 2.7 m from home). So on the way home, given the newest scan, the
+// mission leaves the trail for the breadcrumb nearest home (home itself first) to which the
+// scan shows a straight way clear by shortcut_clearance_m (straight_path_clear) and which
+// enters no keep-out box: one such check a step, the breadcrumbs within the laser's reach
+// examined in turn; and stalled return_realign_s, it lays the next breadcrumbs onto the free
+// space the scan shows (align_trail_with_scan, trail_alignment.hpp).
 //
 // Bad input: an invalid or non-finite NavState counts towards the failsafe; a non-finite
 // explorer set-point becomes a hold (velocity zero, where the vehicle is). Time: the phase
