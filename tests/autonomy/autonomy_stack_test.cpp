@@ -337,6 +337,28 @@ TEST_F(AutonomyStackTest, TheMissionKeepsOutOfTheExplorersKeepOutBoxes) {
   EXPECT_FLOAT_EQ(p.keep_out[0].y_max, 9.1f);
 }
 
+// The home fix turns the blend's flights on the spot after take-off, for reference scans all
+// round home; the frontier explorer's not (home_fix.hpp: the turn cost it and gained nothing);
+// with the home fix off, neither turns.
+TEST_F(AutonomyStackTest, OnlyTheBlendFamilysFlightsTurnAfterTakeOffForTheHomeFix) {
+  StackConfig c = Rig::config();
+  c.mission_kind = mission::MissionKind::kExplore;
+  ASSERT_EQ(r.stack->configure(c), Status::kOk);
+  EXPECT_FLOAT_EQ(r.stack->mission().params().takeoff_survey_rad, c.home_fix.survey_rad);
+  EXPECT_GT(c.home_fix.survey_rad, 6.0f);
+  c.explorer_kind = exploration::ExplorerKind::kFrontier;
+  ASSERT_EQ(r.stack->configure(c), Status::kOk);
+  EXPECT_FLOAT_EQ(r.stack->mission().params().takeoff_survey_rad, 0.0f);
+  EXPECT_GT(r.stack->mission().params().home_survey_rad, 6.0f);  // over home it still turns
+  c.home_fix.frontier_survey_rad = -1.0f;
+  EXPECT_EQ(r.stack->configure(c), Status::kInvalidArgument);
+  c.home_fix.frontier_survey_rad = 0.0f;
+  c.explorer_kind = exploration::ExplorerKind::kBlend;
+  c.home_fix.enabled = false;
+  ASSERT_EQ(r.stack->configure(c), Status::kOk);
+  EXPECT_FLOAT_EQ(r.stack->mission().params().takeoff_survey_rad, 0.0f);
+}
+
 // Before start() the loop must not touch a device (the firmware may poll while the sensors
 // are still being brought up): nothing is read, nothing is sent, nothing counted.
 TEST_F(AutonomyStackTest, BeforeStartNothingRunsAndNoDeviceIsTouched) {

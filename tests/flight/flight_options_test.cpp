@@ -145,8 +145,9 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_FALSE(fix.stack.home_fix.enabled);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"home_fix", "1"}}}, fix),
             "home_fix: expected on or off, got '1'");
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "0"}}}, fix), "");
-  EXPECT_EQ(fix.stack.home_fix.survey_rad, 0.0f);
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "3"}}}, fix), "");
+  EXPECT_EQ(fix.stack.home_fix.survey_rad, 3.0f);
+  EXPECT_EQ(fix.stack.home_fix.frontier_survey_rad, 3.0f);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "-1"}}}, fix),
             "takeoff_survey_rad: '-1' is not an angle in [0, 12.5] rad");
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "nan"}}}, fix),

@@ -212,10 +212,11 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       if (value != "on" && value != "off") return "home_fix: expected on or off, got '" + value + "'";
       out.stack.home_fix.enabled = value == "on";
     } else if (key == "takeoff_survey_rad" && kind == mission::MissionKind::kExplore) {
-      // The home fix's turn after take-off (0: none; its reference scans then see only ahead).
+      // The home fix's turn after take-off, whichever the explorer (0: none; its reference
+      // scans then see only what lies ahead).
       if (!parse_double(value, d) || d < 0 || d > 12.5)
         return "takeoff_survey_rad: '" + value + "' is not an angle in [0, 12.5] rad";
-      out.stack.home_fix.survey_rad = static_cast<float>(d);
+      out.stack.home_fix.survey_rad = out.stack.home_fix.frontier_survey_rad = static_cast<float>(d);
     } else if (key == "return_shortcut" && kind == mission::MissionKind::kExplore) {
       if (value != "on" && value != "off") return "return_shortcut: expected on or off, got '" + value + "'";
       out.stack.mission.return_shortcut = value == "on";

@@ -50,9 +50,11 @@ Status AutonomyStack::configure(const StackConfig& c) {
   mission::MissionParams mp = c.mission;
   mp.keep_out = c.explorer.srt.keep_out;
   mp.keep_out_count = c.explorer.srt.keep_out_count;
-  // The home re-localisation's reference scans look all round home (home_fix.hpp).
+  // The home re-localisation's reference scans look all round home, but for the frontier
+  // explorer's (home_fix.hpp).
   if (c.home_fix.enabled) {
-    mp.takeoff_survey_rad = c.home_fix.survey_rad;
+    mp.takeoff_survey_rad =
+        c.explorer_kind == exploration::ExplorerKind::kFrontier ? c.home_fix.frontier_survey_rad : c.home_fix.survey_rad;
     mp.home_survey_rad = c.home_fix.home_survey_rad;
     mp.stall_survey_radius_m = c.home_fix.radius_m;  // where it searches
   }

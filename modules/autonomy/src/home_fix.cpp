@@ -7,7 +7,7 @@ namespace kestrel::autonomy {
 Status validate(const HomeFixConfig& c) {
   if (scan_matching::validate(c.search) != Status::kOk) return Status::kInvalidArgument;
   const auto in = [](float v, float lo, float hi) { return v >= lo && v <= hi; };  // false for NaN
-  if (!in(c.survey_rad, 0.0f, 12.5f) || !in(c.home_survey_rad, 0.0f, 12.5f) || !in(c.reference_window_s, 0.0f, 600.0f) || !in(c.reference_spacing_m, 0.1f, 20.0f) ||
+  if (!in(c.survey_rad, 0.0f, 12.5f) || !in(c.frontier_survey_rad, 0.0f, 12.5f) || !in(c.home_survey_rad, 0.0f, 12.5f) || !in(c.reference_window_s, 0.0f, 600.0f) || !in(c.reference_spacing_m, 0.1f, 20.0f) ||
       !in(c.reference_turn_rad, 0.05f, 3.2f) || !in(c.radius_m, 0.0f, 12.0f) || !in(c.period_s, 0.05f, 60.0f) ||
       !in(c.agree_m, 0.01f, 2.0f) || !in(c.agree_rad, 0.001f, 1.0f) || !in(c.view_change_m, 0.0f, 10.0f) ||
       !in(c.view_change_rad, 0.0f, 3.2f))

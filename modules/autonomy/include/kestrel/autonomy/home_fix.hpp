@@ -37,12 +37,19 @@ namespace kestrel::autonomy {
 struct HomeFixConfig {
   // On by default: over 30 gt-building flights of 30 minutes with the URG-04LX, 26 landed within
   // 0.5 m of where they took off, against 8 without (modules/exploration/EXPERIMENTS.md, *Home
-  // re-localised*). Explore missions turn twice on the spot for it (25 s in all).
+  // re-localised*). Explore missions turn on the spot for it over home (and, but for the frontier
+  // explorer's, after take-off: 25 s in all).
   bool enabled = true;
   scan_matching::RelocaliserParams search;
   // The mission turns on the spot this much after take-off (MissionParams::takeoff_survey_rad),
-  // so that the reference scans see all round home.
+  // so that the reference scans see all round home: with the blend and its baselines.
   float survey_rad = 6.2831853f;
+  // The frontier explorer's flights do without it: its references, the first minute's scans
+  // along its first path, set the landing as right (gt-building, URG-04LX, seeds 1-30: 29 within
+  // 0.5 m of take-off without the turn, 27 with it, 7 with no home fix), and the turn cost every
+  // flight 15-19 s and, in iarc-arena with the URG-04LX, six clean flights of ten
+  // (modules/exploration/EXPERIMENTS.md, *The take-off turn and the frontier explorer*).
+  float frontier_survey_rad = 0.0f;
   // ...and, home by the estimate, turns on the spot again before descending
   // (MissionParams::home_survey_rad): the search goes on while it turns and lands.
   float home_survey_rad = 6.2831853f;
