@@ -348,12 +348,17 @@ TEST_F(AutonomyStackTest, OnlyTheBlendFamilysFlightsTurnAfterTakeOffForTheHomeFi
   EXPECT_GT(c.home_fix.survey_rad, 6.0f);
   c.explorer_kind = exploration::ExplorerKind::kFrontier;
   ASSERT_EQ(r.stack->configure(c), Status::kOk);
-  EXPECT_FLOAT_EQ(r.stack->mission().params().takeoff_survey_rad, 0.0f);
+  EXPECT_FLOAT_EQ(r.stack->mission().params().takeoff_survey_rad, 0.0f);  // the default
   EXPECT_GT(r.stack->mission().params().home_survey_rad, 6.0f);  // over home it still turns
+  c.home_fix.frontier_survey_rad = 1.0f;  // it is this setting the frontier's flights take
+  ASSERT_EQ(r.stack->configure(c), Status::kOk);
+  EXPECT_FLOAT_EQ(r.stack->mission().params().takeoff_survey_rad, 1.0f);
+  // Checked with the home fix's settings, whichever the explorer.
+  c.explorer_kind = exploration::ExplorerKind::kBlend;
   c.home_fix.frontier_survey_rad = -1.0f;
   EXPECT_EQ(r.stack->configure(c), Status::kInvalidArgument);
+  EXPECT_STREQ(r.stack->configure_error(), "home re-localisation parameters");
   c.home_fix.frontier_survey_rad = 0.0f;
-  c.explorer_kind = exploration::ExplorerKind::kBlend;
   c.home_fix.enabled = false;
   ASSERT_EQ(r.stack->configure(c), Status::kOk);
   EXPECT_FLOAT_EQ(r.stack->mission().params().takeoff_survey_rad, 0.0f);

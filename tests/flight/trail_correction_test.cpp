@@ -4,7 +4,9 @@
 // composition, pinned in NavFilterHistory.FrameCorrectionsComposeToThePresentStatesMove), and
 // the breadcrumbs recorded since the correction's stamp must move by the same D, those before
 // it not at all. Flown in gt-building for 150 s, the trail compared across every correction
-// the filter took. Host preset only: under qemu a simulated minute of the stack is too long.
+// the filter took. The correction's stamp is the stack's own: where the moved run starts is
+// pinned by BreadcrumbTrail's unit tests (shift_since), not here. Host preset only: under qemu
+// a simulated minute of the stack is too long.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -44,6 +46,9 @@ TEST(TrailClosedLoop, TheSlamsCorrectionsMoveTheBreadcrumbsRecordedSinceByTheFil
   int corrections = 0, moved_some = 0, kept_some = 0;
   const TimeUs stop = s.now() + Duration::from_s(150);
   while (s.now() < stop && m.tick(s) == sim::MissionState::kRunning) {
+    const mission::Phase phase = m.stack().mission().phase();
+    ASSERT_TRUE(phase == mission::Phase::kIdle || phase == mission::Phase::kTakeoff || phase == mission::Phase::kExplore)
+        << "at " << s.now().seconds() << " s";
     const Pose2 now_frame = m.stack().filter().frame_correction();
     const bool corrected = !same(now_frame, frame);
     if (corrected) {
@@ -71,8 +76,9 @@ TEST(TrailClosedLoop, TheSlamsCorrectionsMoveTheBreadcrumbsRecordedSinceByTheFil
       }
       frame = now_frame;
     }
-    // The trail changes only by a correction or a record (which always adds a newer breadcrumb):
-    // copied then, not every tick.
+    // While exploring the trail changes only by a correction or a record (a newer breadcrumb at
+    // the end, or a loop cut, which shortens it): copied then, not every tick. (Flying home, a
+    // realignment moves breadcrumbs in place: the flight must not get there.)
     if (corrected || trail.size() != before.size() ||
         (trail.size() > 0 && trail.stamp(trail.size() - 1) != before.stamp(before.size() - 1)))
       before = trail;

@@ -11,7 +11,9 @@
 // Loop side (scan task): offer() picks the reference scans (the first matched scan at flight
 // altitude, over home, then one each time the sensor has moved reference_spacing_m or turned
 // reference_turn_rad, for reference_window_s, up to kMaxReferenceScans: the mission's turn on
-// the spot after take-off, survey_rad, gives five of them all round home) and, flying home
+// the spot after take-off, survey_rad, gives five of them all round home; the frontier
+// explorer's flights, which do not turn (frontier_survey_rad), take them along their first
+// path) and, flying home
 // within radius_m of home (and holding and landing there), one scan every period_s to search; take() hands back a confirmed
 // fix for NavFilter::apply_correction. Level 3 (background_step()) draws and searches
 // (scan_matching/relocaliser.hpp). One slot each way; neither side waits.
@@ -37,8 +39,8 @@ namespace kestrel::autonomy {
 struct HomeFixConfig {
   // On by default: over 30 gt-building flights of 30 minutes with the URG-04LX, 26 landed within
   // 0.5 m of where they took off, against 8 without (modules/exploration/EXPERIMENTS.md, *Home
-  // re-localised*). Explore missions turn on the spot for it over home (and, but for the frontier
-  // explorer's, after take-off: 25 s in all).
+  // re-localised*). Explore missions turn on the spot for it over home, and the blend's and its
+  // baselines' after take-off too (25 s in all; the frontier explorer's about 13 s).
   bool enabled = true;
   scan_matching::RelocaliserParams search;
   // The mission turns on the spot this much after take-off (MissionParams::takeoff_survey_rad),
@@ -46,8 +48,9 @@ struct HomeFixConfig {
   float survey_rad = 6.2831853f;
   // The frontier explorer's flights do without it: its references, the first minute's scans
   // along its first path, set the landing as right (gt-building, URG-04LX, seeds 1-30: 29 within
-  // 0.5 m of take-off without the turn, 27 with it, 7 with no home fix), and the turn cost every
-  // flight 15-19 s and, in iarc-arena with the URG-04LX, six clean flights of ten
+  // 0.5 m of take-off without the turn, 27 with it, 7 with no home fix), and the turn moved each
+  // row's median time to every room 14-19 s later and cost, in iarc-arena with the URG-04LX,
+  // six clean flights of ten
   // (modules/exploration/EXPERIMENTS.md, *The take-off turn and the frontier explorer*).
   float frontier_survey_rad = 0.0f;
   // ...and, home by the estimate, turns on the spot again before descending
