@@ -50,8 +50,8 @@ struct HomeFixConfig {
   // along its first path, set the landing as right (gt-building, URG-04LX, seeds 1-30: 29 within
   // 0.5 m of take-off without the turn, 27 with it, 7 with no home fix), and the turn moved each
   // row's median time to every room 14-19 s later and cost, in iarc-arena with the URG-04LX,
-  // six clean flights of ten
-  // (modules/exploration/EXPERIMENTS.md, *The take-off turn and the frontier explorer*).
+  // six clean flights of ten (modules/exploration/EXPERIMENTS.md, *The take-off turn and the
+  // frontier explorer*).
   float frontier_survey_rad = 0.0f;
   // ...and, home by the estimate, turns on the spot again before descending
   // (MissionParams::home_survey_rad): the search goes on while it turns and lands.
