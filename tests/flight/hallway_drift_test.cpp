@@ -12,9 +12,9 @@
 #include <cstdio>
 
 #include "kestrel/flight/autonomy_mission.hpp"
-#include "kestrel/sim/builtin_worlds.hpp"
 #include "kestrel/sim/mission_runner.hpp"
 #include "kestrel/sim/simulation.hpp"
+#include "sim_flight.hpp"
 
 namespace kestrel::flight {
 namespace {
@@ -23,12 +23,7 @@ TEST(HallwayClosedLoop, OneMetrePerSecondDriftsLessThanOnePercentOfTheHallway) {
 #if KESTREL_FLIGHT_SHORT
   GTEST_SKIP() << "host preset only";
 #endif
-  const sim::WorldParseResult world = sim::load_builtin_world("iarc-arena");
-  ASSERT_TRUE(world.ok);
-  sim::SimConfig cfg;
-  cfg.laser = sim::LaserParams::utm30lx();
-  cfg.seed = 1;
-  sim::Simulation s(world.world, cfg);
+  sim::Simulation s = test::simulate("iarc-arena", sim::LaserParams::utm30lx(), 1);
   FlightOptions f;
   f.kind = f.stack.mission_kind = mission::MissionKind::kWaypoints;
   constexpr float kPi = 3.14159265f;
@@ -51,12 +46,7 @@ TEST(HallwayClosedLoop, OneMetrePerSecondDriftsLessThanOnePercentOfTheHallway) {
   // metrics.json's drift figures (metrics/horizontal_drift.hpp), as kestrel-sim reports them.
   sim::MissionMetrics metrics;
   m.metrics(metrics);
-  auto metric = [&](const char* key) {
-    for (const auto& [k, v] : metrics)
-      if (k == key) return v;
-    ADD_FAILURE() << key << " missing";
-    return std::nan("");
-  };
+  auto metric = [&](const char* key) { return test::metric(metrics, key); };
   EXPECT_GE(metric("far_from_start_m"), 25.0);
   EXPECT_LE(metric("pos_err_xy_far_m"), metric("pos_err_xy_max_m"));
   EXPECT_LE(metric("pos_err_xy_max_m"), 0.01 * kHallway);

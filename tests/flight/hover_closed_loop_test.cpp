@@ -8,25 +8,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "kestrel/flight/autonomy_mission.hpp"
-#include "kestrel/sim/builtin_worlds.hpp"
 #include "kestrel/sim/mission_runner.hpp"
 #include "kestrel/sim/simulation.hpp"
+#include "sim_flight.hpp"
 #include "temp_file.hpp"
 
 namespace kestrel::flight {
 namespace {
 
-double metric(const sim::MissionMetrics& m, const std::string& name) {
-  for (const auto& [k, v] : m)
-    if (k == name) return v;
-  ADD_FAILURE() << "no metric " << name;
-  return -1;
-}
+using test::metric;
 
 struct Flight {
   sim::RunResult run;
@@ -41,18 +37,11 @@ struct Flight {
 
 Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double hover_s, double delay_s = 0,
                  float* accel_noise_xy = nullptr, bool slam = false) {
-  const sim::WorldParseResult world = sim::load_builtin_world(world_name);
-  EXPECT_TRUE(world.ok);
-  sim::SimConfig cfg;
-  cfg.laser = laser;
-  sim::Simulation s(world.world, cfg);
-  sim::MissionOptions opt;
-  opt.values.emplace(std::string("hover_s"), std::to_string(hover_s));
-  if (delay_s > 0) opt.values.emplace(std::string("delay_s"), std::to_string(delay_s));
-  if (slam) opt.values.emplace(std::string("slam"), std::string("on"));
-  FlightOptions f;
-  EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, opt, f), "");
-  AutonomyMission m(std::move(f));
+  sim::Simulation s = test::simulate(world_name, laser);
+  std::map<std::string, std::string> opt{{"hover_s", std::to_string(hover_s)}};
+  if (delay_s > 0) opt["delay_s"] = std::to_string(delay_s);
+  if (slam) opt["slam"] = "on";
+  AutonomyMission m(test::flight_options(mission::MissionKind::kHover, std::move(opt)));
   Flight out;
   out.run = sim::run_mission(s, m, Duration::from_s(hover_s + 12));
   m.metrics(out.metrics);
@@ -164,16 +153,9 @@ TEST(HoverClosedLoop, AnEkfFileLoadsOverTheLasersDefaults) {
   const std::string path = test::write_temp_file("hover_closed_loop_test.ekf", "pose_cov_scale = 2\n");
   for (const bool utm : {false, true}) {
     if (utm && kShort) continue;  // the UTM-30LX is slow under qemu; the URG-04LX shows the order
-    const sim::WorldParseResult world = sim::load_builtin_world("cluttered-lab");
-    ASSERT_TRUE(world.ok);
-    sim::SimConfig cfg;
-    cfg.laser = utm ? sim::LaserParams::utm30lx() : sim::LaserParams::urg04lx();
-    sim::Simulation s(world.world, cfg);
-    sim::MissionOptions opt;
-    opt.values.emplace(std::string("ekf"), path);
-    FlightOptions f;
-    ASSERT_EQ(parse_flight_options(mission::MissionKind::kHover, opt, f), "");
-    AutonomyMission m(std::move(f));
+    sim::Simulation s =
+        test::simulate("cluttered-lab", utm ? sim::LaserParams::utm30lx() : sim::LaserParams::urg04lx());
+    AutonomyMission m(test::flight_options(mission::MissionKind::kHover, {{"ekf", path}}));
     (void)sim::run_mission(s, m, Duration::from_s(0.5));
     const estimation::EkfParams& p = m.stack().filter().params();
     EXPECT_EQ(p.pose_cov_scale, 2.0f) << (utm ? "UTM-30LX" : "URG-04LX");

@@ -15,8 +15,8 @@
 #include <string>
 
 #include "kestrel/flight/autonomy_mission.hpp"
-#include "kestrel/sim/builtin_worlds.hpp"
 #include "kestrel/sim/simulation.hpp"
+#include "sim_flight.hpp"
 
 namespace kestrel::flight {
 namespace {
@@ -27,17 +27,8 @@ TEST(TrailClosedLoop, TheSlamsCorrectionsMoveTheBreadcrumbsRecordedSinceByTheFil
 #if KESTREL_FLIGHT_SHORT
   GTEST_SKIP() << "host preset only";
 #endif
-  const sim::WorldParseResult world = sim::load_builtin_world("gt-building");
-  ASSERT_TRUE(world.ok);
-  sim::SimConfig cfg;
-  cfg.laser = sim::LaserParams::urg04lx();
-  cfg.seed = 2;
-  sim::Simulation s(world.world, cfg);
-  sim::MissionOptions opt;
-  opt.values["explorer"] = "blend";
-  FlightOptions f;
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
-  AutonomyMission m(std::move(f));
+  sim::Simulation s = test::simulate("gt-building", sim::LaserParams::urg04lx(), 2);
+  AutonomyMission m(test::flight_options(mission::MissionKind::kExplore, {{"explorer", "blend"}}));
   ASSERT_EQ(m.start(s), Status::kOk);
 
   const mission::BreadcrumbTrail& trail = m.stack().mission().trail();
