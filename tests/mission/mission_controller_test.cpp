@@ -778,6 +778,80 @@ TEST(MissionController, RejectsBadConfiguration) {
   StaticVector<Waypoint, 2> wps;
   ASSERT_TRUE(wps.push_back({{1, 1, -1}, 0, 0}));  // below the floor
   EXPECT_EQ(mc.configure(MissionKind::kWaypoints, {}, &wps), Status::kInvalidArgument);
+  wps.clear();
+  ASSERT_TRUE(wps.push_back({{1, 1, 1}, 0, std::numeric_limits<float>::infinity()}));  // a hold without end
+  EXPECT_EQ(mc.configure(MissionKind::kWaypoints, {}, &wps), Status::kInvalidArgument);
+}
+
+// The flight's account (kestrel-sim's phase_start_s, kestrel-fw's closing report): when each
+// phase was first entered, nothing for one never entered, and a new configure starts afresh.
+TEST(MissionController, RecordsWhenEachPhaseWasFirstEntered) {
+  MissionRun r;
+  MissionParams p;
+  p.hover_duration_s = 2;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
+  TimeUs at;
+  EXPECT_FALSE(r.mc.first_entered(Phase::kTakeoff, at));
+  ASSERT_TRUE(r.run_until(Phase::kTakeoff, 10));
+  const TimeUs takeoff = r.t;
+  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  const TimeUs hover = r.t;
+  ASSERT_TRUE(r.run_until(Phase::kLanded, 20));
+  ASSERT_TRUE(r.mc.first_entered(Phase::kTakeoff, at));
+  EXPECT_EQ(at, takeoff);
+  ASSERT_TRUE(r.mc.first_entered(Phase::kHover, at));
+  EXPECT_EQ(at, hover);
+  EXPECT_TRUE(r.mc.first_entered(Phase::kLand, at));
+  EXPECT_GT(at, hover + Duration::from_s(1.9));
+  EXPECT_FALSE(r.mc.first_entered(Phase::kExplore, at));
+  EXPECT_FALSE(r.mc.first_entered(Phase::kFailsafeLand, at));
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
+  EXPECT_FALSE(r.mc.first_entered(Phase::kTakeoff, at));
+}
+
+// Regression (audit): the landing took the estimate's height without asking whether the
+// estimate was valid, so one invalid state reading zeros (a filter not yet running) stopped
+// the motors a metre up. Now only a believed estimate lands it; an invalid one that lasts
+// hands the vehicle to the failsafe, which descends on its timer.
+TEST(MissionController, AnInvalidEstimateWhileLandingDoesNotCountAsTouchdown) {
+  MissionRun r;
+  MissionParams p;
+  p.hover_duration_s = 1;
+  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
+  ASSERT_TRUE(r.run_until(Phase::kLand, 20));
+  ASSERT_GT(r.v.nav.position_m.z(), 0.8f);
+  NavState zeros;  // what NavFilter::state() gives before it is initialised: invalid, at 0
+  zeros.stamp = r.t += Duration::from_ms(25);
+  (void)r.mc.step(r.t, zeros, nullptr);
+  EXPECT_EQ(r.mc.phase(), Phase::kLand);
+  EXPECT_TRUE(r.mc.wants_armed());
+  for (int i = 0; i < 40 && r.mc.phase() == Phase::kLand; ++i) {
+    zeros.stamp = r.t += Duration::from_ms(25);
+    (void)r.mc.step(r.t, zeros, nullptr);
+  }
+  EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
+  EXPECT_TRUE(r.mc.wants_armed());
+}
+
+// An estimate gone NaN on the way home: the set-point keeps the last position believed and
+// holds still (velocity zero) until the failsafe takes over; no NaN reaches the controller.
+TEST(MissionController, ANaNEstimateOnTheWayHomeGivesAFiniteSetpoint) {
+  MissionRun r;
+  MissionParams p;
+  ExplorerOutput e;
+  ASSERT_TRUE(r.explore_then_finish(p, e, {{{0.5f, 0, 0}, 160}}));
+  const Eigen::Vector3f believed = r.v.nav.position_m;
+  NavState nan_nav = r.v.nav;
+  nan_nav.position_m.setConstant(std::nanf(""));
+  for (int i = 0; i < 60; ++i) {
+    nan_nav.stamp = r.t += Duration::from_ms(25);
+    const GuidanceSetpoint s = r.mc.step(r.t, nan_nav, &e);
+    ASSERT_TRUE(s.position_m.allFinite()) << "step " << i << " in " << to_string(r.mc.phase());
+    ASSERT_TRUE(s.velocity_mps.allFinite()) << "step " << i;
+    EXPECT_NEAR(s.position_m.x(), believed.x(), 1e-5f);
+    EXPECT_NEAR(s.position_m.y(), believed.y(), 1e-5f);
+  }
+  EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
 }
 
 TEST(MissionController, StepsDoNotAllocate) {

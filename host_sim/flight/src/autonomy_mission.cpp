@@ -312,9 +312,7 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
 }
 
 AutonomyMission::AutonomyMission(FlightOptions options)
-    : options_(std::move(options)), exec_clock_(std::make_unique<RealClock>()) {
-  phase_start_s_.fill(-1.0);
-}
+    : options_(std::move(options)), exec_clock_(std::make_unique<RealClock>()) {}
 
 AutonomyMission::~AutonomyMission() = default;
 
@@ -364,13 +362,7 @@ sim::MissionState AutonomyMission::tick(sim::Simulation& sim) {
       if (trace_.is_open()) trace(sim);
     }
   }
-  const mission::Phase p = stack_->mission().phase();
-  if (p != last_phase_) {
-    double& first = phase_start_s_[static_cast<std::size_t>(p)];
-    if (first < 0) first = sim.now().seconds();
-    last_phase_ = p;
-  }
-  if (p == mission::Phase::kHover) {
+  if (stack_->mission().phase() == mission::Phase::kHover) {
     const Eigen::Vector3d sp = stack_->setpoint().position_m.cast<double>();
     hover_sq_sum_ += (sim.truth().position_m - sp).squaredNorm();
     ++hover_n_;
@@ -487,11 +479,13 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("home_fixes_refused", c.home_fixes_refused);
   // When each phase began (its first time): an explore phase that ended well before
   // explore_s ran out of frontiers.
-  for (std::size_t i = 0; i < phase_start_s_.size(); ++i) {
-    if (phase_start_s_[i] < 0) continue;
+  for (std::size_t i = 0; i < mission::kPhaseCount; ++i) {
+    const auto phase = static_cast<mission::Phase>(i);
+    TimeUs at;
+    if (!stack_->mission().first_entered(phase, at)) continue;
     std::string key = "phase_start_s.";
-    key.append(mission::to_string(static_cast<mission::Phase>(i)));
-    out.emplace_back(std::move(key), phase_start_s_[i]);
+    key.append(mission::to_string(phase));
+    out.emplace_back(std::move(key), at.seconds());
   }
   if (const exploration::Explorer* e = stack_->explorer(); e != nullptr) {
     out.emplace_back("approach_scaled", e->status().approach_scaled);

@@ -99,7 +99,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
     if (waypoints == nullptr || waypoints->empty()) return Status::kInvalidArgument;
     if (waypoints->size() > kMaxWaypoints) return Status::kCapacityExceeded;
     for (const Waypoint& w : *waypoints) {
-      if (!w.position_m.allFinite() || !std::isfinite(w.heading_rad) || !(w.hold_s >= 0) || !(w.position_m.z() > 0))
+      if (!w.position_m.allFinite() || !std::isfinite(w.heading_rad) || !(std::isfinite(w.hold_s) && w.hold_s >= 0) || !(w.position_m.z() > 0))
         return Status::kInvalidArgument;
       (void)waypoints_.push_back(w);
     }
@@ -108,6 +108,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
   params_ = p;
   trail_ = BreadcrumbTrail(p.breadcrumb_spacing_m);
   phase_ = Phase::kIdle;
+  entered_.fill(false);
   returned_home_ = false;
   stall_surveyed_ = false;
   shortcuts_ = 0;
@@ -120,6 +121,16 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
 void MissionController::enter(Phase p, TimeUs now) {
   phase_ = p;
   phase_start_ = now;
+  const auto i = static_cast<std::size_t>(p);
+  if (!entered_[i]) first_entered_at_[i] = now;
+  entered_[i] = true;
+}
+
+bool MissionController::first_entered(Phase p, TimeUs& at) const {
+  const auto i = static_cast<std::size_t>(p);
+  if (i >= kPhaseCount || !entered_[i]) return false;
+  at = first_entered_at_[i];
+  return true;
 }
 
 bool MissionController::arrived(const NavState& nav, const Eigen::Vector3f& target) const {
@@ -153,6 +164,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
   if (estimate_ok) {
     if (!seen_estimate_) first_estimate_ = t;
     last_valid_estimate_ = t;
+    last_position_ = nav.position_m;
     seen_estimate_ = true;
   }
   if (!configured_ || !seen_estimate_) return hold(now, Eigen::Vector3f::Zero(), 0);
@@ -331,7 +343,9 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         const float max_turn = params_.return_yaw_rate_radps * dt;
         hold_heading_ = wrap_angle(hold_heading_ + std::clamp(turn, -max_turn, max_turn));
       }
-      GuidanceSetpoint s = hold(now, {nav.position_m.x(), nav.position_m.y(), alt}, hold_heading_);
+      // Without an estimate this step the velocity is zero (homing_velocity) and the set-point's
+      // position the last one believed, never the estimate's NaN.
+      GuidanceSetpoint s = hold(now, {last_position_.x(), last_position_.y(), alt}, hold_heading_);
       s.mode = GuidanceSetpoint::Mode::kVelocity;
       s.velocity_mps.setZero();
       s.velocity_mps.head<2>() = homing_velocity(to_target);
@@ -361,7 +375,9 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       } else {
         ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);  // aim below the floor to settle
       }
-      if (nav.position_m.z() < params_.landed_altitude_m && std::fabs(nav.velocity_mps.z()) < 0.2f)
+      // Touchdown only on an estimate believed: an invalid one (zeros before the filter runs)
+      // must not stop the motors in the air; if it lasts, the failsafe lands on a timer.
+      if (estimate_ok && nav.position_m.z() < params_.landed_altitude_m && std::fabs(nav.velocity_mps.z()) < 0.2f)
         enter(Phase::kLanded, t);
       GuidanceSetpoint s = hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
       if (kind_ != MissionKind::kExplore) return s;
@@ -380,7 +396,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       s.stamp = now;
       s.mode = GuidanceSetpoint::Mode::kVelocity;
       ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);
-      s.position_m = {nav.position_m.x(), nav.position_m.y(), ramp_z_};
+      s.position_m = {last_position_.x(), last_position_.y(), ramp_z_};
       s.heading_rad = hold_heading_;
       const float fall_time = params_.takeoff_altitude_m / params_.descent_rate_mps + 3.0f;
       if ((estimate_ok && nav.position_m.z() < params_.landed_altitude_m) ||

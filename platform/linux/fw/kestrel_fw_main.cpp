@@ -234,7 +234,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "kestrel-fw: the loop could not start\n");
     rc = 1;
   }
-  const TimeUs t_end = clock.now() + Duration::from_s(opt.max_s);
+  const TimeUs t_start = clock.now();
+  const TimeUs t_end = t_start + Duration::from_s(opt.max_s);
   while (rc == 0 && !g_stop.load() && !stack->finished() && clock.now() < t_end) {
     if (bridge.pump() == Status::kClosed) {
       std::fprintf(stderr, "kestrel-fw: the autopilot link closed\n");
@@ -259,6 +260,19 @@ int main(int argc, char** argv) {
                stack->finished() ? "finished" : "stopped", mission::to_string(stack->mission().phase()),
                stack->counters().scans, stack->counters().scans_matched, stack->silences().imu,
                stack->silences().scan);
+  // The mission's account: when each phase began, from the loop's start, and how the flight
+  // home went (a landing soon after return began, not at home, is a flight home that stalled).
+  const mission::MissionController& mission = stack->mission();
+  std::fprintf(stderr, "kestrel-fw: phases");
+  for (std::size_t i = 0; i < mission::kPhaseCount; ++i) {
+    const auto phase = static_cast<mission::Phase>(i);
+    TimeUs at;
+    if (mission.first_entered(phase, at))
+      std::fprintf(stderr, " %s %.1f s", mission::to_string(phase), (at - t_start).seconds());
+  }
+  std::fprintf(stderr, "; returned home %s, shortcuts %u, realignments %u, home fixes %u (refused %u)\n",
+               mission.returned_home() ? "yes" : "no", mission.shortcuts(), mission.realignments(),
+               stack->counters().home_fixes, stack->counters().home_fixes_refused);
   // The link's health, for a bench test: damaged frames and bytes lost between frames.
   const platform::HilCounters& link = bridge.counters();
   std::fprintf(stderr, "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u\n",

@@ -108,8 +108,6 @@ class AutonomyMission final : public sim::Mission {
   metrics::EkfErrorAccumulator nav_error_;
   metrics::HorizontalDriftAccumulator drift_;
   metrics::RunawayCounter runaways_;  // estimate_runaways in metrics.json
-  mission::Phase last_phase_ = mission::Phase::kIdle;
-  std::array<double, mission::kPhaseCount> phase_start_s_{};  // first entry; < 0: never
   ScanTrace trace_;  // --trace-scans (scan_trace.hpp); closed unless asked for
 };
 

@@ -141,6 +141,10 @@ class MissionController {
   bool at_rest() const { return !wants_armed(); }
   // On the mission's clock (equal to the steps' `now` unless time jumped).
   TimeUs phase_started() const { return phase_start_; }
+  // When the mission first entered phase p since configure(), on the same clock; false for a
+  // phase it has not entered. The flight's account: an explore phase that ended well before
+  // its limit ran out of frontiers, a land soon after return began stalled on the way home.
+  bool first_entered(Phase p, TimeUs& at) const;
   const Eigen::Vector3f& home() const { return home_; }
   std::size_t waypoint_index() const { return waypoint_index_; }
   const BreadcrumbTrail& trail() const { return trail_; }
@@ -174,12 +178,15 @@ class MissionController {
   BreadcrumbTrail trail_;
   Phase phase_ = Phase::kIdle;
   TimeUs phase_start_;
+  std::array<TimeUs, kPhaseCount> first_entered_at_{};
+  std::array<bool, kPhaseCount> entered_{};
   TimeUs last_valid_estimate_;
   TimeUs last_step_;
   TimeUs clock_;  // the timers' clock: see the header comment
   bool clock_started_ = false;
   bool seen_estimate_ = false;
   TimeUs first_estimate_;
+  Eigen::Vector3f last_position_ = Eigen::Vector3f::Zero();  // of the last valid estimate
   Eigen::Vector3f home_ = Eigen::Vector3f::Zero();
   Eigen::Vector3f hold_point_ = Eigen::Vector3f::Zero();
   float hold_heading_ = 0;
