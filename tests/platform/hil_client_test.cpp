@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "kestrel/comms/hil_messages.hpp"
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/platform/linux/tcp_link.hpp"
@@ -11,6 +13,9 @@ namespace kestrel::platform {
 namespace {
 
 using comms::HilType;
+
+// The board's clock, far from the peer's zero (a board up for an hour).
+ManualTimeSource board_clock{TimeUs::from_s(3600)};
 
 struct Pair {
   TcpLink client, server;
@@ -50,7 +55,7 @@ TEST(HilClient, DeliversSensorFramesToTheRightDevice) {
   Pair pair;
   hal::LaserGeometry g;
   g.beam_count = 1081;
-  static HilClient hil(pair.client, g, Duration::from_ms(5));
+  static HilClient hil(pair.client, board_clock, g, Duration::from_ms(5));
   for (int i = 0; i < 3; ++i) {
     ImuSample s;
     s.stamp = TimeUs::from_us(1000 * i);
@@ -82,9 +87,55 @@ TEST(HilClient, DeliversSensorFramesToTheRightDevice) {
   EXPECT_EQ(hil.counters().malformed, 0u);
 }
 
+// The peer's stamps (the simulator's clock starts at zero) reach the stack on the board's
+// clock, keeping their own spacing: a backlog that arrives at once is not closed up onto its
+// last frame, and a later, quicker frame moves them by no more than its saved delay.
+TEST(HilClient, StampsAreMappedOntoTheBoardsClock) {
+  Pair pair;
+  ManualTimeSource board{TimeUs::from_s(3600)};
+  HilClient hil(pair.client, board, {}, Duration::from_ms(5));
+  for (int i = 0; i < 4; ++i) {  // 20 ms of IMU samples, stamped 10-25 ms on the peer's clock
+    ImuSample s;
+    s.stamp = TimeUs::from_us(10'000 + 5'000 * i);
+    send_msg(pair.server, HilType::kImu, s);
+  }
+  AltimeterSample a;
+  a.stamp = TimeUs::from_us(20'000);
+  send_msg(pair.server, HilType::kAltitude, a);
+  std::vector<ImuSample> got;
+  bool have_alt = false;
+  AltimeterSample alt;
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] {
+    ImuSample s;
+    while (hil.poll(s) == Status::kOk) got.push_back(s);
+    if (hil.poll(alt) == Status::kOk) have_alt = true;
+    return got.size() == 4 && have_alt;
+  }));
+  // All arrived at 3600 s on the board (its clock stood still): the newest frame, 25 ms, had
+  // the least delay, so it maps to 3600 s and the others keep their 5 ms spacing before it.
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(got[i].stamp, TimeUs::from_s(3600) - Duration::from_ms(15 - 5 * i)) << i;
+  EXPECT_EQ(alt.stamp, TimeUs::from_s(3600) - Duration::from_ms(5));
+  // A scan stamped 30 ms arriving 10 ms of board time later: 5 ms later than its stamp says,
+  // so the offset stands and the scan is 5 ms old.
+  board.advance(Duration::from_ms(10));
+  static LaserScan scan;
+  scan.stamp = TimeUs::from_us(30'000);
+  scan.beam_count = 1;
+  send_msg(pair.server, HilType::kLaserScan, scan);
+  static LaserScan got_scan;
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return static_cast<hal::LaserScanner&>(hil).poll(got_scan) == Status::kOk; }));
+  EXPECT_EQ(got_scan.stamp, TimeUs::from_s(3600) + Duration::from_ms(5));
+  FlightStatus st;
+  st.stamp = TimeUs::from_us(31'000);
+  send_msg(pair.server, HilType::kFlightStatus, st);
+  FlightStatus got_st;
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.poll_status(got_st) == Status::kOk; }));
+  EXPECT_EQ(got_st.stamp, TimeUs::from_s(3600) + Duration::from_ms(6));
+}
+
 TEST(HilClient, SendsSetpointsAndArmCommands) {
   Pair pair;
-  HilClient hil(pair.client, {}, Duration::from_ms(5));
+  HilClient hil(pair.client, board_clock, {}, Duration::from_ms(5));
   ASSERT_EQ(hil.arm(true), Status::kOk);
   AttitudeSetpoint sp;
   sp.thrust = 0.55f;
@@ -117,7 +168,7 @@ TEST(HilClient, SendsSetpointsAndArmCommands) {
 
 TEST(HilClient, PeerGoneIsReportedAndGarbageCounted) {
   Pair pair;
-  HilClient hil(pair.client, {}, Duration::from_ms(5));
+  HilClient hil(pair.client, board_clock, {}, Duration::from_ms(5));
   const uint8_t junk[] = {0xA5, 0x5A, 99, 1, 0, 7, 0x12, 0x34};  // unknown type, bad CRC
   const uint8_t noise[] = {0x00, 0xA5, 0x13};                    // no frame starts in it
   ASSERT_TRUE(pair.server.write(junk, sizeof(junk)).ok());

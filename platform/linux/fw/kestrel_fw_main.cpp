@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
     }
     autopilot_link = &autopilot_port;
   }
-  static platform::HilClient bridge(*autopilot_link, model.geometry(), Duration::from_ms(5));
+  static platform::HilClient bridge(*autopilot_link, clock, model.geometry(), Duration::from_ms(5));
   static platform::HokuyoScip hokuyo(hokuyo_port, clock, model);
   hal::LaserScanner* laser = &bridge;
   if (opt.hil.empty()) {

@@ -16,12 +16,13 @@ Status HilClient::pump() {
       counters_.skipped_bytes = decoder_.skipped_bytes();
       return r.ok() ? Status::kOk : r.status();
     }
+    const TimeUs arrival = clock_.now();
     for (std::size_t i = 0; i < r.value(); ++i)
-      if (decoder_.push(buf[i])) dispatch();
+      if (decoder_.push(buf[i])) dispatch(arrival);
   }
 }
 
-void HilClient::dispatch() {
+void HilClient::dispatch(TimeUs arrival) {
   ++counters_.frames;
   const uint8_t* p = decoder_.payload();
   const std::size_t n = decoder_.size();
@@ -29,6 +30,7 @@ void HilClient::dispatch() {
     case HilType::kLaserScan:
       if (scan_fresh_) ++counters_.overwritten_scans;
       if (comms::decode_payload(p, n, scan_) == Status::kOk) {
+        peer_clock_.observe(scan_.stamp, arrival);
         scan_fresh_ = true;
       } else {
         scan_fresh_ = false;
@@ -39,22 +41,25 @@ void HilClient::dispatch() {
       ImuSample s;
       if (comms::decode_payload(p, n, s) != Status::kOk) {
         ++counters_.malformed;
-      } else if (!imu_queue_.push(s)) {
-        ++counters_.dropped_imu;
+        return;
       }
+      peer_clock_.observe(s.stamp, arrival);
+      if (!imu_queue_.push(s)) ++counters_.dropped_imu;
       return;
     }
     case HilType::kAltitude: {
       AltimeterSample s;
       if (comms::decode_payload(p, n, s) != Status::kOk) {
         ++counters_.malformed;
-      } else {
-        (void)altitude_queue_.push(s);  // a lost altitude sample is harmless: the next follows
+        return;
       }
+      peer_clock_.observe(s.stamp, arrival);
+      (void)altitude_queue_.push(s);  // a lost altitude sample is harmless: the next follows
       return;
     }
     case HilType::kFlightStatus:
       if (comms::decode_payload(p, n, status_) == Status::kOk) {
+        peer_clock_.observe(status_.stamp, arrival);
         status_fresh_ = true;
       } else {
         ++counters_.malformed;
@@ -69,17 +74,28 @@ void HilClient::dispatch() {
 Status HilClient::poll(LaserScan& out) {
   if (!scan_fresh_) return Status::kNoData;
   out = scan_;
+  out.stamp = peer_clock_.to_board(scan_.stamp);
   scan_fresh_ = false;
   return Status::kOk;
 }
 
-Status HilClient::poll(ImuSample& out) { return imu_queue_.pop(out) ? Status::kOk : Status::kNoData; }
+// Queued with the peer's stamps, mapped as they are read: see the header's note on time.
+Status HilClient::poll(ImuSample& out) {
+  if (!imu_queue_.pop(out)) return Status::kNoData;
+  out.stamp = peer_clock_.to_board(out.stamp);
+  return Status::kOk;
+}
 
-Status HilClient::poll(AltimeterSample& out) { return altitude_queue_.pop(out) ? Status::kOk : Status::kNoData; }
+Status HilClient::poll(AltimeterSample& out) {
+  if (!altitude_queue_.pop(out)) return Status::kNoData;
+  out.stamp = peer_clock_.to_board(out.stamp);
+  return Status::kOk;
+}
 
 Status HilClient::poll_status(FlightStatus& out) {
   if (!status_fresh_) return Status::kNoData;
   out = status_;
+  out.stamp = peer_clock_.to_board(status_.stamp);
   status_fresh_ = false;
   return Status::kOk;
 }

@@ -41,20 +41,18 @@ void HokuyoScip::convert(TimeUs arrival) {
   const comms::ScipScan& s = decoder_.scan();
   // The sensor clock is 24 bits of milliseconds: unwrap it so stamps stay monotonic.
   const uint32_t ms = s.sensor_time_ms & 0xFFFFFFu;
-  if (have_offset_) {
+  if (sensor_clock_.known()) {
     unwrapped_ms_ += static_cast<int64_t>((ms - last_sensor_ms_) & 0xFFFFFFu);
   } else {
     unwrapped_ms_ = ms;
   }
   last_sensor_ms_ = ms;
-  const int64_t sensor_us = unwrapped_ms_ * 1000;
-  const int64_t offset = arrival.us - sensor_us;
-  if (!have_offset_ || offset < offset_us_) offset_us_ = offset;
-  have_offset_ = true;
 
   const hal::LaserGeometry g = model_.geometry();
   const int64_t step_us = model_.scan_period.us / model_.steps_per_rev;
-  scan_.stamp = TimeUs{sensor_us + offset_us_};
+  const TimeUs sensor_stamp{unwrapped_ms_ * 1000};
+  sensor_clock_.observe(sensor_stamp, arrival);
+  scan_.stamp = sensor_clock_.to_board(sensor_stamp);
   scan_.scan_period = model_.scan_period;
   scan_.beam_interval = Duration{step_us};
   scan_.first_angle_rad = g.first_angle_rad +

@@ -4,9 +4,17 @@
 // to an autopilot-side bridge that speaks the same framing. One object implements all four
 // HAL devices, because one stream carries them all; pump() moves bytes into small fixed
 // queues, and each device's poll reads its own queue.
+//
+// Time: the far end stamps every frame on its own clock (the simulator's starts at zero, an
+// autopilot's at its boot). The stack compares stamps with the board's clock (a scan's age on
+// the way home, a measurement from the future), so every stamp is mapped onto the board's
+// clock through one DeviceClock for the link (core/device_clock.hpp), as the Hokuyo driver
+// does its sensor's. Unmapped, a simulator's scans looked hours old to kestrel-fw, whose
+// flight home then held still until it stalled and landed where it was.
 #include <cstdint>
 
 #include "kestrel/comms/hil_codec.hpp"
+#include "kestrel/core/device_clock.hpp"
 #include "kestrel/core/ring_buffer.hpp"
 #include "kestrel/hal/altimeter.hpp"
 #include "kestrel/hal/flight_controller.hpp"
@@ -29,8 +37,9 @@ struct HilCounters {
 
 class HilClient final : public hal::LaserScanner, public hal::Imu, public hal::Altimeter, public hal::FlightController {
  public:
-  HilClient(hal::Link& link, const hal::LaserGeometry& geometry, Duration imu_period)
-      : link_(link), geometry_(geometry), imu_period_(imu_period) {}
+  // `clock` is the board's: what the stamps are mapped onto, read as frames arrive.
+  HilClient(hal::Link& link, const TimeSource& clock, const hal::LaserGeometry& geometry, Duration imu_period)
+      : link_(link), clock_(clock), geometry_(geometry), imu_period_(imu_period) {}
 
   // Reads what the link has and decodes it. kClosed when the peer has gone away.
   Status pump();
@@ -52,9 +61,11 @@ class HilClient final : public hal::LaserScanner, public hal::Imu, public hal::A
 
  private:
   Status write_frame(uint8_t type, const uint8_t* payload, std::size_t size);
-  void dispatch();
+  void dispatch(TimeUs arrival);
 
   hal::Link& link_;
+  const TimeSource& clock_;
+  DeviceClock peer_clock_;
   hal::LaserGeometry geometry_;
   Duration imu_period_;
   comms::HilDecoder decoder_;

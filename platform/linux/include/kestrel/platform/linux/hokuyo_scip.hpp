@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "kestrel/comms/scip.hpp"
+#include "kestrel/core/device_clock.hpp"
 #include "kestrel/core/time.hpp"
 #include "kestrel/hal/laser_scanner.hpp"
 #include "kestrel/hal/link.hpp"
@@ -54,8 +55,7 @@ class HokuyoScip final : public hal::LaserScanner {
   comms::ScipDecoder decoder_;
   LaserScan scan_;
   bool fresh_ = false;
-  bool have_offset_ = false;
-  int64_t offset_us_ = 0;
+  DeviceClock sensor_clock_;  // core/device_clock.hpp
   uint32_t last_sensor_ms_ = 0;
   int64_t unwrapped_ms_ = 0;
 };
