@@ -15,8 +15,7 @@ constexpr float kCloseInToleranceM = 0.05f;
 
 bool straight_path_clear(const LaserScan& scan, const Pose2& laser, Point2 target, float clearance_m) {
   if (!laser.finite() || !std::isfinite(target.x) || !std::isfinite(target.y) || !(clearance_m > 0.0f) ||
-      !std::isfinite(clearance_m) || scan.beam_count == 0 || scan.max_range_mm == 0 ||
-      !std::isfinite(scan.first_angle_rad) || !std::isfinite(scan.angle_step_rad) || scan.angle_step_rad == 0.0f)
+      !std::isfinite(clearance_m) || !scan.fan_well_formed())
     return false;
   const float dx = target.x - laser.x, dy = target.y - laser.y;
   const float length = std::hypot(dx, dy);

@@ -27,9 +27,7 @@ int32_t half_cell_step(int32_t component_q30) {
 Status ScanFreeSpace::build(const LaserScan& scan, const Pose2& laser, float near_m, float wide_m) {
   cells_.fill(kDistance);  // unseen, no return near
   built_ = false;
-  if (!laser.finite() || !(near_m > 0.0f) || !(wide_m >= near_m) || !(wide_m <= 1.0f) || scan.beam_count == 0 ||
-      scan.beam_count > kMaxBeams || !std::isfinite(scan.first_angle_rad) || !std::isfinite(scan.angle_step_rad) ||
-      scan.angle_step_rad == 0.0f)
+  if (!laser.finite() || !(near_m > 0.0f) || !(wide_m >= near_m) || !(wide_m <= 1.0f) || !scan.fan_well_formed())
     return Status::kInvalidArgument;
   constexpr float kHalfM = kCellM * (kSide / 2);
   corner_ = {laser.x - kHalfM, laser.y - kHalfM};

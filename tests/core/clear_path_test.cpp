@@ -81,6 +81,28 @@ TEST(StraightPathClear, NotClearWhereTheScanSaysNothing) {
   LaserScan no_range = urg;
   no_range.max_range_mm = 0;
   EXPECT_FALSE(straight_path_clear(no_range, at, {1.5f, 8.0f}, kClearance));
+  // Regression (audit): a fan claiming more beams than a scan holds was read past its array.
+  LaserScan too_many = urg;
+  too_many.beam_count = kMaxBeams + 1;
+  EXPECT_FALSE(straight_path_clear(too_many, at, {1.5f, 8.0f}, kClearance));
+  LaserScan too_fine = urg;
+  too_fine.angle_step_rad = 1e-12f;
+  EXPECT_FALSE(straight_path_clear(too_fine, at, {1.5f, 8.0f}, kClearance));
+}
+
+// What every module asks of a fan before it indexes beams by angle (messages.hpp).
+TEST(LaserScanFan, WellFormedOnlyWithinTheArrayOneTurnAndARealStep) {
+  EXPECT_TRUE(fan_well_formed(682, -2.09f, 0.00614f, 4000));   // URG-04LX
+  EXPECT_TRUE(fan_well_formed(1081, -2.36f, 0.00436f, 30000));  // UTM-30LX
+  EXPECT_TRUE(fan_well_formed(682, 2.09f, -0.00614f, 4000));   // clockwise
+  EXPECT_FALSE(fan_well_formed(0, 0.0f, 0.01f, 4000));
+  EXPECT_FALSE(fan_well_formed(kMaxBeams + 1, 0.0f, 0.001f, 4000));
+  EXPECT_FALSE(fan_well_formed(100, NAN, 0.01f, 4000));
+  EXPECT_FALSE(fan_well_formed(100, 0.0f, INFINITY, 4000));
+  EXPECT_FALSE(fan_well_formed(100, 0.0f, 0.0f, 4000));
+  EXPECT_FALSE(fan_well_formed(100, 0.0f, 0.5f * kMinAngleStepRad, 4000));
+  EXPECT_FALSE(fan_well_formed(1000, 0.0f, 0.01f, 4000));  // ten radians: it wraps onto itself
+  EXPECT_FALSE(fan_well_formed(100, 0.0f, 0.01f, kMinValidRangeMm - 1));
 }
 
 // The beams the path runs along must have seen it: paper 000's mirror deflects the UTM-30LX's

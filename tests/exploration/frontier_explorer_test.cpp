@@ -247,6 +247,21 @@ TEST(FrontierExplorer, RefusesInconsistentParameters) {
   p = {};
   p.frontier.cell_m = NAN;
   EXPECT_EQ(r.configure(p), Status::kInvalidArgument);
+  // Regression (audit): distances beyond the rays' 60 m overflowed the cell arithmetic (a
+  // blacklist disc of 6 km excluded nothing; a minimum frontier of 100 km wrapped its count).
+  p = {};
+  p.frontier.blacklist_radius_m = 6000.0f;
+  EXPECT_EQ(p.validate(), Status::kInvalidArgument);
+  p = {};
+  p.frontier.min_frontier_m = 1e5f;
+  EXPECT_EQ(p.validate(), Status::kInvalidArgument);
+  p = {};
+  p.frontier.switch_margin_m = INFINITY;
+  EXPECT_EQ(p.validate(), Status::kInvalidArgument);
+  // Nor may the blend's waypoint distance d wrap its 16-bit twice-d step (33 m became 0.46 m).
+  p = {};
+  p.guidance.arrival_distance_m = 33.0f;
+  EXPECT_EQ(p.validate(), Status::kInvalidArgument);
   p = {};
   p.frontier.soft_m = 40.0f;  // beyond the obstacle distance's 85 cells
   EXPECT_EQ(r.configure(p), Status::kInvalidArgument);

@@ -599,6 +599,17 @@ TEST(SrtStarPlanner, RejectsBadInputWithoutChangingState) {
   EXPECT_EQ(planner->update({0, 0, 0}, empty, TimeUs{}, fresh), Status::kInvalidArgument);
   EXPECT_EQ(planner->mode(), PlannerMode::kIdle);
   EXPECT_TRUE(planner->tree().nodes().empty());
+  // Regression (audit): a fan of more beams than a scan holds was read past its array, and the
+  // pose marked flown, before the scan was refused.
+  SrtParams marking;
+  marking.retrace = RetraceMode::kAlways;
+  marking.retrace_target = RetraceTarget::kFrontier;
+  ASSERT_EQ(planner->configure(marking, {}), Status::kOk);
+  LaserScan oversized = opening_scan(10);
+  oversized.beam_count = kMaxBeams + 1;
+  EXPECT_EQ(planner->update({0, 0, 0}, oversized, TimeUs{}, fresh), Status::kInvalidArgument);
+  EXPECT_EQ(planner->visited().marked_cells(), 0u);
+  EXPECT_TRUE(planner->tree().nodes().empty());
 }
 
 

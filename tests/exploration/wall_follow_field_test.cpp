@@ -213,6 +213,12 @@ TEST_F(FieldTest, RefusesBadConfigurationAndForeignScans) {
   EXPECT_EQ(field->configure(BeamGeometry::of(uniform_scan(urg, 0)), bad), Status::kInvalidArgument);
   EXPECT_EQ(field->configure({0, 0.0f, 0.01f, 4000}, {}), Status::kInvalidArgument);
   EXPECT_EQ(field->configure({100, 0.0f, 0.0f, 4000}, {}), Status::kInvalidArgument);
+  // Regression (audit): ranges beyond what 16-bit millimetres and the field's 32-bit sums hold
+  // were taken, and the field came out with the wrong sign; a step too fine for beam indices.
+  bad = {};
+  bad.target_range_m = 200.0f;
+  EXPECT_EQ(field->configure(BeamGeometry::of(uniform_scan(urg, 0)), bad), Status::kInvalidArgument);
+  EXPECT_EQ(field->configure({100, 0.0f, 1e-12f, 4000}, {}), Status::kInvalidArgument);
   EXPECT_FALSE(field->configured());
   ASSERT_EQ(field->configure(BeamGeometry::of(uniform_scan(urg, 0)), {}), Status::kOk);
   EXPECT_EQ(field->body_velocity(uniform_scan(LaserModel::utm30lx(), 1500), r), Status::kInvalidArgument);

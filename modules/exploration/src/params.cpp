@@ -64,7 +64,9 @@ Result<RetraceTarget> parse_retrace_target(const char* name) {
 }
 
 Status Params::validate() const {
-  const bool wall_ok = positive(wall.target_range_m) && positive(wall.safe_range_m) &&
+  // Ranges are held in millimetres of 16 bits, and the field's sums in 32 (wall_follow_field.cpp):
+  // every range below the 65 m a scan can carry.
+  const bool wall_ok = positive(wall.target_range_m) && wall.target_range_m < 65.0f && positive(wall.safe_range_m) &&
                        wall.safe_range_m < wall.target_range_m && non_negative(wall.gain_wf) &&
                        non_negative(wall.gain_safe) && positive(wall.max_range_m) && wall.max_range_m < 65.0f;
   const bool srt_ok = srt.sector_count >= 2 && srt.sector_count <= kMaxSectors && positive(srt.perception_range_m) &&
@@ -76,7 +78,9 @@ Status Params::validate() const {
                       listed(srt.retrace_target, kRetraceTargets);
   bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) keep_out_ok = srt.keep_out[i].valid();
-  const bool guidance_ok = positive(guidance.arrival_distance_m) && non_negative(guidance.gain_fr) &&
+  // A waypoint is at least twice d from its node, in millimetres of 16 bits: d up to 10 m.
+  const bool guidance_ok = positive(guidance.arrival_distance_m) && guidance.arrival_distance_m <= 10.0f &&
+                           non_negative(guidance.gain_fr) &&
                            positive(guidance.speed_limit_mps) && positive(guidance.yaw_rate_limit_radps) &&
                            positive(guidance.waypoint_time_limit_s) && positive(guidance.blocked_arrival_distance_m) &&
                            positive(guidance.blocked_time_s) && std::isfinite(guidance.altitude_m) &&
@@ -90,15 +94,20 @@ Status Params::validate() const {
 }
 
 Status FrontierParams::validate() const {
-  const bool ok = cell_m >= 0.02f && cell_m <= 1.0f && positive(reach_m) && reach_m <= 60.0f && positive(lethal_m) &&
+  // Every distance within the 60 m the rays may reach at most: they become cell counts and
+  // squared cell distances of 16 and 32 bits (frontier_clusters.hpp, frontier_explorer.cpp).
+  const auto within_reach = [](float v) { return non_negative(v) && v <= 60.0f; };
+  const bool distances_ok = within_reach(min_frontier_m) && within_reach(blacklist_radius_m) &&
+                            within_reach(goal_match_m) && within_reach(look_distance_m) &&
+                            within_reach(progress_m) && within_reach(stuck_radius_m) && within_reach(switch_margin_m);
+  const bool ok = distances_ok && cell_m >= 0.02f && cell_m <= 1.0f && positive(reach_m) && reach_m <= 60.0f && positive(lethal_m) &&
                   non_negative(relaxed_lethal_m) && relaxed_lethal_m <= lethal_m && soft_m >= lethal_m && soft_m <= 10.0f && soft_penalty <= 60 &&
-                  non_negative(coastal_fraction) && coastal_fraction <= 1.0f && soft_penalty + coastal_penalty <= 60 && non_negative(min_frontier_m) &&
+                  non_negative(coastal_fraction) && coastal_fraction <= 1.0f && soft_penalty + coastal_penalty <= 60 &&
                   non_negative(goal_inset_m) && goal_inset_m <= 5.0f && positive(lookahead_m) && lookahead_m <= 10.0f &&
                   non_negative(field_weight) && field_weight <= 10.0f && non_negative(draw_period_s) &&
                   draw_period_s <= 2.0f && positive(replan_period_s) && replan_period_s <= 2.5f &&
                   positive(progress_m) && positive(patience_s) && positive(goal_time_limit_s) &&
-                  non_negative(blacklist_radius_m) && non_negative(goal_match_m) && non_negative(look_distance_m) && looks_to_give_up >= 1 && positive(stuck_radius_m) && positive(stuck_time_s) &&
-                  non_negative(switch_margin_m) &&
+                  looks_to_give_up >= 1 && positive(stuck_radius_m) && positive(stuck_time_s) &&
                   empty_plans_to_finish >= 1;
   // Distances become chamfer units of a third of a cell, at most 255.
   return ok && soft_m / cell_m * 3.0f < 255.0f ? Status::kOk : Status::kInvalidArgument;
@@ -111,13 +120,10 @@ Status ApproachParams::validate() const {
 }
 
 Status BeamGeometry::validate() const {
-  if (beam_count == 0 || beam_count > kMaxBeams) return Status::kInvalidArgument;
-  if (!std::isfinite(first_angle_rad) || !std::isfinite(angle_step_rad) || angle_step_rad == 0.0f)
-    return Status::kInvalidArgument;
-  // The scan must not wrap onto itself: at most one full turn.
-  if (std::fabs(angle_step_rad) * static_cast<float>(beam_count) > 6.2832f) return Status::kInvalidArgument;
-  if (max_range_mm < kMinValidRangeMm) return Status::kInvalidArgument;
-  return Status::kOk;
+  // The per-beam tables (sectors, clearance erosion) index beams by angle: a step finer than
+  // kMinAngleStepRad would overflow those indices.
+  return fan_well_formed(beam_count, first_angle_rad, angle_step_rad, max_range_mm) ? Status::kOk
+                                                                                     : Status::kInvalidArgument;
 }
 
 bool BeamGeometry::matches(const LaserScan& scan) const {

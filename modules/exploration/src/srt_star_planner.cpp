@@ -165,8 +165,9 @@ bool SrtStarPlanner::heading_target(const Pose2& pose, float& heading_rad) const
 Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs now, bool& new_waypoint) {
   new_waypoint = false;
   last_work_ = 0;
-  if (!pose.finite()) return Status::kInvalidArgument;
-  if (scan.beam_count == 0) return Status::kInvalidArgument;
+  // Checked before anything is marked: a refused scan changes nothing (mark_seen indexes its
+  // beams).
+  if (!pose.finite() || !scan.fan_well_formed()) return Status::kInvalidArgument;
   const uint32_t issued = waypoints_issued_;
   // Not while an arrival step is worked on: its result must not depend on the poses given
   // meanwhile (sliced and one-shot steps agree), and the vehicle waits on the spot.
@@ -447,7 +448,9 @@ uint32_t SrtStarPlanner::draw_candidate(TimeUs now) {
   const float r_clear = static_cast<float>(node.clear_mm[q]) * 1e-3f;
   const float r_sector = static_cast<float>(node.radius_mm[sector]) * 1e-3f;
   const float lo = srt_.step_min_fraction * r_sector, hi = srt_.step_max_fraction * r_sector;
-  const float dist = std::clamp(lo + (hi - lo) * prng_.uniform(), min_step, r_clear);
+  // The candidate's clear distance passed min_step in whole millimetres: it can lie a rounding
+  // below min_step itself, and std::clamp needs its bounds in order.
+  const float dist = std::clamp(lo + (hi - lo) * prng_.uniform(), std::min(min_step, r_clear), r_clear);
   const float a = node.ray_angle(sector, ray);
   const Point2 p{node.position.x + dist * std::cos(a), node.position.y + dist * std::sin(a)};
   // An operator keep-out is as good as a wall: the next candidate ray is tried.

@@ -3,6 +3,7 @@
 // the comments, fixed size: a message can be copied into a queue slot without allocating.
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "kestrel/core/se2.hpp"
@@ -22,6 +23,18 @@ inline constexpr uint16_t kDropout = 2;      // lost return (dust, grazing incid
 inline constexpr uint16_t kDeflected = 3;    // beam sent elsewhere (e.g. down by a mirror)
 }  // namespace range_code
 inline constexpr uint16_t kMinValidRangeMm = 20;
+// The finest angle between beams a fan may have: far below any scanner's (the UTM-30LX's is
+// 0.0044 rad), and coarse enough that a beam index computed from an angle stays within int.
+inline constexpr float kMinAngleStepRad = 1e-4f;
+
+// Whether a fan of beams can be used at all, whatever module takes it: 1..kMaxBeams beams,
+// finite angles, a step no finer than kMinAngleStepRad (either sign), no more than one full
+// turn, and a maximum range that can hold a return.
+inline bool fan_well_formed(uint16_t beam_count, float first_angle_rad, float angle_step_rad, uint16_t max_range_mm) {
+  return beam_count > 0 && beam_count <= kMaxBeams && std::isfinite(first_angle_rad) &&
+         std::isfinite(angle_step_rad) && std::fabs(angle_step_rad) >= kMinAngleStepRad &&
+         std::fabs(angle_step_rad) * static_cast<float>(beam_count) <= 6.2832f && max_range_mm >= kMinValidRangeMm;
+}
 
 struct LaserScan {
   TimeUs stamp;                 // time the first beam was taken
@@ -34,6 +47,9 @@ struct LaserScan {
   std::array<uint16_t, kMaxBeams> range_mm{};  // mm, or a range_code below kMinValidRangeMm
 
   static bool is_return(uint16_t r) { return r >= kMinValidRangeMm; }
+  bool fan_well_formed() const {
+    return kestrel::fan_well_formed(beam_count, first_angle_rad, angle_step_rad, max_range_mm);
+  }
   float angle_of(std::size_t i) const { return first_angle_rad + angle_step_rad * static_cast<float>(i); }
   TimeUs time_of(std::size_t i) const { return stamp + beam_interval * static_cast<int64_t>(i); }
 };
