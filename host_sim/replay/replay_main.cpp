@@ -66,6 +66,40 @@ void help() {
       stdout);
 }
 
+// The extent of the map's points and poses. It starts empty (not at +-1e9, which a log with no
+// matched scan left in place: the width came out negative and the grid's vector threw).
+struct Bounds {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  void add(double x, double y) {
+    x0 = std::min(x0, x);
+    y0 = std::min(y0, y);
+    x1 = std::max(x1, x);
+    y1 = std::max(y1, y);
+  }
+  bool empty() const { return !(x0 <= x1 && y0 <= y1); }
+  // Within +-1e6 m the cell and pixel counts below stay well inside an int (a first reference
+  // pose beyond 1e9 m overflowed the cast); written as !(outside) so NaN is not drawable.
+  bool drawable() const {
+    constexpr double kMaxM = 1e6;
+    return !empty() && std::fabs(x0) <= kMaxM && std::fabs(x1) <= kMaxM && std::fabs(y0) <= kMaxM &&
+           std::fabs(y1) <= kMaxM;
+  }
+};
+
+// Cells across `span_m` at `resolution_m`, at most 4000 (capped before the cast to int).
+int capped_cells(double span_m, double resolution_m) {
+  return static_cast<int>(std::min(3999.0, span_m / resolution_m)) + 1;
+}
+
+void print_summary(int n, int rejected, int lost, int keys, bool has_ref, const metrics::RpeResult& rpe,
+                   const metrics::AteResult& ate, int jumps, double t_sum, double t_max) {
+  std::printf("scans %d rejected %d lost %d key %d", n, rejected, lost, keys);
+  if (has_ref)
+    std::printf(" rpe %.4f m %.3f deg (max %.3f m %.2f deg, jumps %d) ate %.3f m", rpe.trans_m.mean, rpe.rot_deg.mean,
+                rpe.trans_m.max, rpe.rot_deg.max, jumps, ate.trans_m.rmse);
+  std::printf(" time mean %.0f us max %.0f us\n", t_sum / n, t_max);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -210,15 +244,26 @@ int main(int argc, char** argv) {
   if (!ok(j.write_file(out_dir + "/metrics.json"))) return 1;
 
   // The map: every return drawn at its scan's estimated pose, 5 cm cells.
-  double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
-  for (const Point2d& q : points) { x0 = std::min(x0, q.x); y0 = std::min(y0, q.y); x1 = std::max(x1, q.x); y1 = std::max(y1, q.y); }
-  for (const Pose2d& q : est) { x0 = std::min(x0, q.x); y0 = std::min(y0, q.y); x1 = std::max(x1, q.x); y1 = std::max(y1, q.y); }
+  Bounds b;
+  for (const Point2d& q : points) b.add(q.x, q.y);
+  for (const Pose2d& q : est) b.add(q.x, q.y);
+  if (!b.drawable()) {
+    // No scan matched (every beam "no return", say), or the poses lie where no grid reaches.
+    std::fprintf(stderr, "kestrel-replay: %s: %s; map.pgm not written\n", log.c_str(),
+                 b.empty() ? "no scan was matched" : "the matched poses lie beyond +-1e6 m");
+    output::Canvas c(800, 100);
+    c.text(8, 8, b.empty() ? "no scan was matched: no map" : "poses beyond +-1e6 m: no map", output::colors::kBlack, 2);
+    if (!ok(output::write_png(out_dir + "/render.png", c))) return 1;
+    print_summary(n, rejected, lost, keys, has_ref, rpe, ate, jumps, t_sum, t_max);
+    return 0;
+  }
+  const double x0 = b.x0, y0 = b.y0, x1 = b.x1, y1 = b.y1;
   output::GridImage g;
   g.resolution_m = 0.05;
   g.origin_x_m = x0 - 1;
   g.origin_y_m = y0 - 1;
-  g.width = std::min(4000, static_cast<int>((x1 - x0 + 2) / g.resolution_m) + 1);
-  g.height = std::min(4000, static_cast<int>((y1 - y0 + 2) / g.resolution_m) + 1);
+  g.width = capped_cells(x1 - x0 + 2, g.resolution_m);
+  g.height = capped_cells(y1 - y0 + 2, g.resolution_m);
   std::vector<int> hits(static_cast<std::size_t>(g.width) * g.height, 0);
   for (const Point2d& q : points) {
     const int cx = static_cast<int>((q.x - g.origin_x_m) / g.resolution_m), cy = static_cast<int>((q.y - g.origin_y_m) / g.resolution_m);
@@ -245,8 +290,6 @@ int main(int argc, char** argv) {
   c.text(8, 8, "scan matcher (red) vs reference (green)", output::colors::kBlack, 2);
   if (!ok(output::write_png(out_dir + "/render.png", c))) return 1;
 
-  std::printf("scans %d rejected %d lost %d key %d", n, rejected, lost, keys);
-  if (has_ref) std::printf(" rpe %.4f m %.3f deg (max %.3f m %.2f deg, jumps %d) ate %.3f m", rpe.trans_m.mean, rpe.rot_deg.mean, rpe.trans_m.max, rpe.rot_deg.max, jumps, ate.trans_m.rmse);
-  std::printf(" time mean %.0f us max %.0f us\n", t_sum / n, t_max);
+  print_summary(n, rejected, lost, keys, has_ref, rpe, ate, jumps, t_sum, t_max);
   return 0;
 }
