@@ -140,6 +140,28 @@ TEST(WorldParser, PointsBeyondTheIndoorExtentAreRejected) {
   EXPECT_GT(map.reachable_cells(), 0u);
 }
 
+// Regression: a yaw of 1e308 degrees overflowed to inf radians, the box's corners became NaN, and
+// NaN passed the extent and convexity checks (every comparison with NaN is false), so kestrel-sim
+// hung rendering the world; a start yaw of 1e308 flew NaN trajectories.
+TEST(WorldParser, HugeAnglesAreRejectedWithTheirLine) {
+  const BadCase cases[] = {
+      {"start 0 0 0 0\nbox 3 3 1 1 yaw=1e308\n", "t.world:2: yaw=1e308 lies outside +-360 deg"},
+      {"start 0 0 0 0\nbox 3 3 1 1 yaw=-361\n", "t.world:2: yaw=-361 lies outside +-360 deg"},
+      {"start 5 5 0 1e308\nwall 0 0 1 0\n", "t.world:1: start: YAW_DEG 1e308 lies outside +-360 deg"},
+      {"start 5 5 1e308 0\nwall 0 0 1 0\n", "t.world:1: start height Z must be at most 500 m"},
+      {"start 0 0 0 0\nbox 0 0 1e308 1e308\n", "t.world:2: box: point"},
+  };
+  for (const BadCase& c : cases) {
+    const auto r = parse(c.text);
+    EXPECT_FALSE(r.ok) << c.text;
+    EXPECT_NE(r.error.find(c.expected), std::string::npos) << "got: " << r.error << "\nwanted: " << c.expected;
+  }
+  // A full turn either way is still a yaw.
+  const auto r = parse("start 0 0 0 -360\nbox 3 3 1 1 yaw=360\n");
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_NEAR(r.world.start.yaw_rad, -2 * std::numbers::pi, 1e-9);
+}
+
 TEST(WorldParser, RandomlyMutatedWorldsAreRefusedOrSound) {
   const std::string base =
       "# a comment\n"

@@ -19,9 +19,23 @@ constexpr double kPi = 3.14159265358979323846;
 // square would take 10^8 cells at 0.1 m: slow to build and large, but no overflow.
 constexpr double kMaxCoordinateM = 500;
 constexpr double kMaxWallThicknessM = 10;
+// A yaw is written in degrees within one turn either way. Beyond that it is a typo, and a huge
+// one (1e308) overflows to inf in radians: its sine and cosine are NaN, and NaN corners passed
+// every later check, so the simulator hung on the world.
+constexpr double kMaxYawDeg = 360;
 
+// Written as !(within) so that a NaN coordinate counts as outside.
 bool outside_extent(const Eigen::Vector2d& p) {
-  return std::fabs(p.x()) > kMaxCoordinateM || std::fabs(p.y()) > kMaxCoordinateM;
+  return !(std::fabs(p.x()) <= kMaxCoordinateM && std::fabs(p.y()) <= kMaxCoordinateM);
+}
+
+bool yaw_out_of_range(double deg) {
+  return !(std::fabs(deg) <= kMaxYawDeg);
+}
+
+// `what` is the yaw as written (yaw=1e308, or start's YAW_DEG).
+std::string yaw_error(const std::string& what) {
+  return what + " lies outside +-360 deg";
 }
 
 std::string extent_error(const std::string& what, const Eigen::Vector2d& p) {
@@ -78,6 +92,7 @@ std::string parse_options(const std::vector<std::string>& toks, std::size_t firs
       o.has_z = true;
     } else if (allow_yaw && t.rfind("yaw=", 0) == 0) {
       if (!parse_number(t.substr(4), o.yaw_deg)) return "yaw=DEG expected, got '" + t + "'";
+      if (yaw_out_of_range(o.yaw_deg)) return yaw_error(t);
       o.has_yaw = true;
     } else {
       return "unknown option '" + t + "'";
@@ -114,20 +129,20 @@ bool make_convex_ccw(std::vector<Eigen::Vector2d>& poly) {
   int sign = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double c = cross(poly[i], poly[(i + 1) % n], poly[(i + 2) % n]);
-    if (std::fabs(c) < 1e-12) return false;
+    if (!(std::fabs(c) >= 1e-12)) return false;  // NaN-safe: a NaN corner is not convex
     const int s = c > 0 ? 1 : -1;
     if (sign == 0) sign = s;
     if (s != sign) return false;
   }
   // Also reject self-intersecting "stars" whose turns agree: total turning must be 2*pi.
-  if (std::fabs(polygon_signed_area(poly)) < 1e-12) return false;
+  if (!(std::fabs(polygon_signed_area(poly)) >= 1e-12)) return false;
   double turning = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector2d e1 = poly[(i + 1) % n] - poly[i];
     const Eigen::Vector2d e2 = poly[(i + 2) % n] - poly[(i + 1) % n];
     turning += std::atan2(e1.x() * e2.y() - e1.y() * e2.x(), e1.dot(e2));
   }
-  if (std::fabs(std::fabs(turning) - 2 * kPi) > 1e-6) return false;
+  if (!(std::fabs(std::fabs(turning) - 2 * kPi) <= 1e-6)) return false;
   if (sign < 0) std::reverse(poly.begin(), poly.end());
   return true;
 }
@@ -167,14 +182,17 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
     } else if (kw == "start") {
       if (read_numbers(toks, 1, nums, bad) != 4 || toks.size() != 5)
         return fail("start needs 4 numbers: X Y Z YAW_DEG");
-      if (nums[2] < 0) return fail("start height Z must not be below the floor");
+      if (!(nums[2] >= 0)) return fail("start height Z must not be below the floor");
+      if (!(nums[2] <= kMaxCoordinateM))
+        return fail("start height Z must be at most " + std::to_string(static_cast<int>(kMaxCoordinateM)) + " m");
       if (outside_extent({nums[0], nums[1]})) return fail(extent_error("start", {nums[0], nums[1]}));
+      if (yaw_out_of_range(nums[3])) return fail(yaw_error("start: YAW_DEG " + toks[4]));
       w.start = {nums[0], nums[1], nums[2], nums[3] * kPi / 180.0};
       have_start = true;
     } else if (kw == "wall_height" || kw == "wall_thickness" || kw == "ceiling") {
       if (read_numbers(toks, 1, nums, bad) != 1 || toks.size() != 2)
         return fail(kw + " needs one number");
-      if (nums[0] < 0 || (kw != "ceiling" && nums[0] == 0)) return fail(kw + " must be positive");
+      if (!(nums[0] >= 0) || (kw != "ceiling" && nums[0] == 0)) return fail(kw + " must be positive");
       if (kw == "wall_thickness" && nums[0] > kMaxWallThicknessM)
         return fail(kw + " must be at most " + std::to_string(static_cast<int>(kMaxWallThicknessM)) +
                     " m (use a box for a thick obstacle)");
@@ -207,7 +225,7 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
       Obstacle o;
       if (kw == "box") {
         if (n != 4) return fail("box needs 4 numbers CX CY SIZE_X SIZE_Y, got " + std::to_string(n));
-        if (nums[2] <= 0 || nums[3] <= 0) return fail("box sizes must be positive");
+        if (!(nums[2] > 0 && nums[3] > 0)) return fail("box sizes must be positive");
         const double c = std::cos(opt.yaw_deg * kPi / 180.0), s = std::sin(opt.yaw_deg * kPi / 180.0);
         const double hx = nums[2] / 2, hy = nums[3] / 2;
         const double corners[4][2] = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
@@ -215,7 +233,7 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
           o.polygon.emplace_back(nums[0] + c * k[0] - s * k[1], nums[1] + s * k[0] + c * k[1]);
       } else if (kw == "pillar") {
         if (n != 3) return fail("pillar needs 3 numbers CX CY RADIUS, got " + std::to_string(n));
-        if (nums[2] <= 0) return fail("pillar radius must be positive");
+        if (!(nums[2] > 0)) return fail("pillar radius must be positive");
         for (int k = 0; k < 16; ++k) {
           const double a = 2 * kPi * k / 16;
           o.polygon.emplace_back(nums[0] + nums[2] * std::cos(a), nums[1] + nums[2] * std::sin(a));
