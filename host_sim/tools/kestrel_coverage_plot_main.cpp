@@ -54,7 +54,8 @@ int help() {
       "panel per --panel.\n"
       "  --out PNG      the picture to write\n"
       "  --step S       sampling step of the curves, seconds (default 1)\n"
-      "  --end S        end of the time axis (default: where the longest run ends)\n"
+      "  --end S        end of the time axis (default: where the longest run ends); at most\n"
+      "                 100000 steps of --step\n"
       "  --panel TITLE  starts a panel; the --series after it belong to it\n"
       "  --series LABEL=CSV[,CSV...]  a curve and the runs it averages\n"
       "  --help         this text\n"
@@ -103,6 +104,12 @@ int main(int argc, char** argv) {
   if (!args.ok()) return usage(args.error());
   if (out.empty()) return usage("--out is required");
   if (panels.empty()) return usage("no --panel");
+  // Checked before the records are read: the curves' samples would not fit in memory.
+  if (end > 0.0 && !(end / step <= metrics::kMaxCoverageSteps)) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "--end %g / --step %g is more than %g steps", end, step, metrics::kMaxCoverageSteps);
+    return usage(msg);
+  }
 
   // Read every record first: the time axis ends where the longest run ends (or at --end).
   std::vector<std::vector<std::vector<metrics::CoverageCurve>>> runs(panels.size());
@@ -129,7 +136,16 @@ int main(int argc, char** argv) {
       }
     }
   }
-  if (end <= 0.0) end = last_t > 0.0 ? last_t : 1.0;
+  if (end <= 0.0) {
+    end = last_t > 0.0 ? last_t : 1.0;
+    if (!(end / step <= metrics::kMaxCoverageSteps)) {
+      std::fprintf(stderr,
+                   "kestrel-coverage-plot: the longest run ends at %g s, more than %g steps of %g s; "
+                   "give a shorter --end or a larger --step\n",
+                   end, metrics::kMaxCoverageSteps, step);
+      return 1;
+    }
+  }
 
   std::vector<output::Panel> plot;
   for (std::size_t p = 0; p < panels.size(); ++p) {

@@ -54,5 +54,16 @@ TEST(CoverageCurve, MeanOverRunsOnACommonGrid) {
   EXPECT_EQ(mean_coverage({a}, 1.0, -1.0).status(), Status::kInvalidArgument);
 }
 
+// Regression: the grid's size was unbounded, so a step of 1e-6 s to 1e6 s asked for 10^12
+// samples (out of memory) and an end of 1e300 s overflowed lround and gave an empty curve.
+TEST(CoverageCurve, MeanRefusesMoreThanTheMaximumSteps) {
+  const CoverageCurve a{{0.0, 1.0}, {0.0, 0.5}};
+  EXPECT_EQ(mean_coverage({a}, 1e-6, 1e6).status(), Status::kInvalidArgument);
+  EXPECT_EQ(mean_coverage({a}, 1.0, 1e300).status(), Status::kInvalidArgument);
+  EXPECT_EQ(mean_coverage({a}, 1.0, kMaxCoverageSteps + 1).status(), Status::kInvalidArgument);
+  EXPECT_EQ(mean_coverage({a}, 1.0, kMaxCoverageSteps).value().t_s.size(),
+            static_cast<std::size_t>(kMaxCoverageSteps) + 1);
+}
+
 }  // namespace
 }  // namespace kestrel::metrics

@@ -60,6 +60,7 @@ double coverage_at(const CoverageCurve& run, double t_s) {
 Result<CoverageCurve> mean_coverage(const std::vector<CoverageCurve>& runs, double step_s, double end_s) {
   if (!(step_s > 0.0) || !std::isfinite(step_s) || !(end_s > 0.0) || !std::isfinite(end_s))
     return Status::kInvalidArgument;
+  if (!(end_s / step_s <= kMaxCoverageSteps)) return Status::kInvalidArgument;  // before lround can overflow
   if (runs.empty()) return Status::kNoData;
   CoverageCurve mean;
   const long steps = std::lround(std::floor(end_s / step_s + 0.5));

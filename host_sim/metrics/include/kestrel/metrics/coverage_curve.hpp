@@ -26,8 +26,14 @@ Result<CoverageCurve> parse_coverage_csv(const std::string& text);
 // The coverage of `run` at time t (see above).
 double coverage_at(const CoverageCurve& run, double t_s);
 
+// At most this many steps on mean_coverage's grid: a plot is 1000 pixels wide, and a mistyped
+// step or end (1e-6 s to 1e6 s, or a record ending at 1e9 s) would otherwise ask for 10^12
+// samples, and one of 1e300 s overflows the count.
+inline constexpr double kMaxCoverageSteps = 1e5;
+
 // The mean over `runs` at t = 0, step_s, 2 step_s, ... up to end_s (inclusive, within half a
-// step). kNoData for no runs; kInvalidArgument for a step or end that is not positive and finite.
+// step). kNoData for no runs; kInvalidArgument for a step or end that is not positive and finite,
+// or for more than kMaxCoverageSteps steps.
 Result<CoverageCurve> mean_coverage(const std::vector<CoverageCurve>& runs, double step_s, double end_s);
 
 }  // namespace kestrel::metrics
