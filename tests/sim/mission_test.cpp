@@ -35,6 +35,15 @@ TEST(CommandScript, ParsesAndReportsErrorsWithLines) {
   EXPECT_EQ(s.parse("# nothing\n", "s.txt"), "s.txt: the script has no commands");
 }
 
+// Regression: a step at 1e13 s overflowed TimeUs::from_s and fired at t = 0.
+TEST(CommandScript, TimesBeyondTheLongestFlightAreRefused) {
+  CommandScript s;
+  const std::string want = "s.txt:2: time must be at most 1e6 s (kestrel-sim's longest --duration)";
+  EXPECT_EQ(s.parse("0 0 0 0.5 0\n1e13 5 0 0.5 0\n", "s.txt"), want);
+  EXPECT_EQ(s.parse("0 0 0 0.5 0\ndisarm 1e300\n", "s.txt"), want);
+  EXPECT_EQ(s.parse("0 0 0 0.5 0\ndisarm 1e6\n", "s.txt"), "");
+}
+
 TEST(ManualMission, DefaultScriptFliesDownTheArenaHallwayWithoutContact) {
   const auto w = load_builtin_world("iarc-arena");
   ASSERT_TRUE(w.ok);

@@ -84,6 +84,7 @@ std::string CommandScript::parse(std::string_view text, std::string_view source_
       st.setpoint.yaw_rate_radps = static_cast<float>(v[4] * kDeg);
     }
     if (st.t_s < 0) return where + "time must not be negative";
+    if (st.t_s > kMaxScriptTimeS) return where + "time must be at most 1e6 s (kestrel-sim's longest --duration)";
     if (st.t_s < last_t) return where + "time goes backwards";
     last_t = st.t_s;
     steps.push_back(st);
