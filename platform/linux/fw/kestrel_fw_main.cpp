@@ -39,6 +39,8 @@ void on_signal(int) { g_stop.store(true); }
 
 struct Options {
   std::string hil;         // HOST:PORT
+  std::string hil_host;    // its parts, checked by parse()
+  int hil_port = 0;
   std::string hokuyo;      // serial device
   std::string autopilot;   // serial device
   int baud = 115200;
@@ -71,7 +73,7 @@ int help() {
       "  --laser L          the laser model: utm30lx (default) or urg04lx\n"
       "  --mission M        hover (take off, hover --hover-s seconds (60), land; default) or explore\n"
       "  --explorer E       blend (default), wallfollow, srt or frontier, for --mission explore\n"
-      "  --max-s S          stop after S seconds (default 900)\n"
+      "  --max-s S          stop after S seconds (default 900; at most 1e6, as --hover-s)\n"
       "  --ekf FILE         EKF parameter file (kestrel-tune-ekf writes one), over the laser's defaults\n"
       "  --controller FILE  controller parameter file (kestrel-sysid writes one)\n"
       "  --slam on|off      the compact SLAM at level 3 (default: on with the urg04lx, off with the utm30lx)\n"
@@ -79,6 +81,21 @@ int help() {
       "Exit status 2 for a usage error.\n",
       stdout);
   return 0;
+}
+
+// Seconds --max-s and --hover-s may ask for: kestrel-sim's longest --duration, and far inside
+// what Duration's microseconds hold.
+constexpr double kMaxSeconds = 1e6;
+constexpr int kMaxBaud = 4000000;
+
+// The whole of `s` as a decimal integer in [lo, hi]. Strict, unlike atoi, which took "5801x"
+// as port 5801 (and strtod, which took a baud of "0.5" as 0).
+bool parse_whole(const std::string& s, int lo, int hi, int& out) {
+  if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+  const long v = std::strtol(s.c_str(), nullptr, 10);  // at most 9 digits: no overflow
+  if (v < lo || v > hi) return false;
+  out = static_cast<int>(v);
+  return true;
 }
 
 bool parse(int argc, char** argv, Options& o, std::string& err) {
@@ -114,12 +131,16 @@ bool parse(int argc, char** argv, Options& o, std::string& err) {
     } else if (a == "--slam") {
       if (!value(o.slam)) return false;
       if (o.slam != "on" && o.slam != "off") return err = "--slam: expected on or off, got '" + o.slam + "'", false;
-    } else if (a == "--baud" || a == "--hover-s" || a == "--max-s") {
+    } else if (a == "--baud") {
+      if (!value(v)) return false;
+      if (!parse_whole(v, 1, kMaxBaud, o.baud)) return err = a + ": '" + v + "' is not a whole number of baud", false;
+    } else if (a == "--hover-s" || a == "--max-s") {
       if (!value(v)) return false;
       char* end = nullptr;
       const double d = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(d > 0)) return err = a + ": '" + v + "' is not a positive number", false;
-      if (a == "--baud") o.baud = static_cast<int>(d);
+      // Bounded (NaN-safe): --max-s inf or 1e13 overflowed Duration and the run stopped at once.
+      if (end == v.c_str() || *end != '\0' || !(d > 0 && d <= kMaxSeconds))
+        return err = a + ": '" + v + "' is not a number of seconds in (0, 1e6]", false;
       if (a == "--hover-s") o.hover_s = d;
       if (a == "--max-s") o.max_s = d;
     } else {
@@ -134,6 +155,13 @@ bool parse(int argc, char** argv, Options& o, std::string& err) {
   if (o.hil.empty() && (o.hokuyo.empty() || o.autopilot.empty())) {
     err = "--hokuyo and --autopilot go together";
     return false;
+  }
+  if (!o.hil.empty()) {
+    const std::size_t colon = o.hil.rfind(':');
+    if (colon == std::string::npos || colon == 0) return err = "--hil expects HOST:PORT, got '" + o.hil + "'", false;
+    if (!parse_whole(o.hil.substr(colon + 1), 1, 65535, o.hil_port))
+      return err = "--hil: '" + o.hil.substr(colon + 1) + "' is not a port (1 to 65535)", false;
+    o.hil_host = o.hil.substr(0, colon);
   }
   return true;
 }
@@ -175,12 +203,7 @@ int main(int argc, char** argv) {
   static platform::SerialPort hokuyo_port, autopilot_port;
   hal::Link* autopilot_link = nullptr;
   if (!opt.hil.empty()) {
-    const std::size_t colon = opt.hil.rfind(':');
-    if (colon == std::string::npos) return usage("--hil expects HOST:PORT");
-    const std::string host = opt.hil.substr(0, colon);
-    const int port = std::atoi(opt.hil.c_str() + colon + 1);
-    if (port <= 0 || port > 65535) return usage("--hil: bad port");
-    const Status s = tcp.connect(host.c_str(), static_cast<uint16_t>(port), Duration::from_s(5));
+    const Status s = tcp.connect(opt.hil_host.c_str(), static_cast<uint16_t>(opt.hil_port), Duration::from_s(5));
     if (s != Status::kOk) {
       std::fprintf(stderr, "kestrel-fw: cannot connect to the HIL bridge at %s: %s\n", opt.hil.c_str(), to_string(s));
       return 1;
