@@ -92,6 +92,18 @@ TEST(EkfParams, LoadsAFileAndReportsAMissingOne) {
   std::remove(path.c_str());
 }
 
+// Regression: a directory opens for reading and then fails to read, and that read error was not
+// checked, so --ekf /tmp (and every parameter file option) ran on the defaults.
+TEST(EkfParams, ADirectoryIsNotAParameterFile) {
+  const std::string dir = testing::TempDir();
+  EkfParams p;
+  p.gyro_noise = 7e-6f;
+  params::ParamError err;
+  EXPECT_EQ(load_ekf_params(dir.c_str(), p, err), Status::kIoError);
+  EXPECT_NE(std::strstr(err.message, "(is a directory)"), nullptr) << err.message;
+  EXPECT_EQ(p.gyro_noise, 7e-6f);  // unchanged
+}
+
 TEST(EkfParams, RandomlyMutatedFilesAreRefusedWholeOrApplied) {
   // The file as the writer emits it: a comment line of help, unit and range before each key.
   const EkfParams defaults;

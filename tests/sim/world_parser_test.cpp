@@ -114,6 +114,13 @@ TEST(WorldParser, MissingFileIsAnErrorNamingThePath) {
   EXPECT_NE(r.error.find("/nonexistent/dir/x.world"), std::string::npos);
 }
 
+// Regression: a directory opened as a stream and read as empty text.
+TEST(WorldParser, ADirectoryIsNotAWorldFile) {
+  const auto r = load_world_file(testing::TempDir());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find(": cannot read (is a directory)"), std::string::npos) << r.error;
+}
+
 // Regression: coordinates were only checked to be finite, so a world with a mistyped 1e12 parsed,
 // and building the free-space map over it threw (a vector beyond max_size(), from an int cast of
 // an overflowing cell count) instead of the file being refused with its line.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -94,6 +95,9 @@ std::string CommandScript::parse(std::string_view text, std::string_view source_
 }
 
 std::string CommandScript::load(const std::string& path) {
+  // A directory opens as a stream and then reads as empty: say so rather than parse nothing.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return path + ": cannot read (is a directory)";
   std::ifstream in(path, std::ios::binary);
   if (!in) return path + ": cannot open the command script";
   std::ostringstream ss;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -281,6 +282,13 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
 }
 
 WorldParseResult load_world_file(const std::string& path) {
+  // A directory opens as a stream and then reads as empty: say so rather than parse nothing.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    WorldParseResult r;
+    r.error = path + ": cannot read (is a directory)";
+    return r;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     WorldParseResult r;

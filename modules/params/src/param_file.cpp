@@ -1,6 +1,7 @@
 #include "kestrel/params/param_file.hpp"
 
 #include <array>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -87,7 +88,15 @@ Status load_params_file(const char* path, std::span<const ParamField> fields, Pa
   if (f == nullptr) return fail(error, 0, Status::kIoError, "cannot open '%.*s'", std::string_view(path));
   std::array<char, kMaxParamFileBytes + 1> buf;
   const std::size_t n = std::fread(buf.data(), 1, buf.size(), f);
+  // A directory opens for reading and then fails to read: without this check it passed as an
+  // empty file, and the defaults were used as if the file had asked for them.
+  const bool read_error = std::ferror(f) != 0;
+  const bool is_directory = read_error && errno == EISDIR;
   std::fclose(f);
+  if (read_error) {
+    return fail(error, 0, Status::kIoError, is_directory ? "cannot read '%.*s' (is a directory)" : "cannot read '%.*s'",
+                std::string_view(path));
+  }
   if (n > kMaxParamFileBytes) {
     return fail(error, 0, Status::kCapacityExceeded, "'%.*s' is larger than %g bytes", std::string_view(path),
                 static_cast<double>(kMaxParamFileBytes));
