@@ -89,5 +89,18 @@ TEST(Sysid, RefusesAFlightThatDoesNotExciteTheModel) {
   EXPECT_NE(identify_vehicle(log).status, Status::kOk);
 }
 
+// Regression: empty script text meant the default tour, so kestrel-sysid --script /dev/null (or a
+// comment-only file) flew that tour silently instead of refusing the file as kestrel-sim does.
+TEST(FlightLog, AnEmptyScriptIsRefusedWithItsName) {
+  FlightLog log;
+  FlightSpec spec;
+  spec.kind = FlightKind::kManual;
+  spec.duration_s = 2;
+  spec.script_name = "s.txt";
+  EXPECT_EQ(fly_and_record(spec, log), "s.txt: the script has no commands");
+  spec.script_text = "# only a comment\n";
+  EXPECT_EQ(fly_and_record(spec, log), "s.txt: the script has no commands");
+}
+
 }  // namespace
 }  // namespace kestrel::tuning

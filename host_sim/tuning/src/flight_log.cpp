@@ -84,9 +84,7 @@ std::string fly_and_record(const FlightSpec& spec, FlightLog& log) {
   flight::AutonomyMission* autonomy = nullptr;
   if (spec.kind == FlightKind::kManual) {
     sim::CommandScript script;
-    const std::string e = spec.script_text.empty()
-                              ? script.parse(sim::CommandScript::default_text(), "<default script>")
-                              : script.parse(spec.script_text, "<script>");
+    const std::string e = script.parse(spec.script_text, spec.script_name);
     if (!e.empty()) return e;
     mission = std::make_unique<sim::ManualMission>(std::move(script));
   } else {

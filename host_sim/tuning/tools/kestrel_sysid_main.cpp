@@ -19,6 +19,7 @@
 #include "kestrel/cli/arg_reader.hpp"
 #include "kestrel/control/controller_params.hpp"
 #include "kestrel/params/param_file.hpp"
+#include "kestrel/sim/command_script.hpp"
 #include "kestrel/sim/config_file.hpp"
 #include "kestrel/tuning/sysid.hpp"
 
@@ -120,14 +121,17 @@ int main(int argc, char** argv) {
     if (o.script.empty()) {
       spec.script_text = tuning::sysid_script_text();
     } else {
-      std::ifstream in(o.script);
-      if (!in) {
-        std::fprintf(stderr, "kestrel-sysid: cannot read %s\n", o.script.c_str());
+      // Checked before flying, as kestrel-sim checks it: FILE:LINE, no commands, a directory.
+      sim::CommandScript script;
+      if (const std::string e = script.load(o.script); !e.empty()) {
+        std::fprintf(stderr, "kestrel-sysid: %s\n", e.c_str());
         return 1;
       }
+      std::ifstream in(o.script);
       std::stringstream ss;
       ss << in.rdbuf();
       spec.script_text = ss.str();
+      spec.script_name = o.script;
     }
     spec.duration_s = o.seconds > 0 ? o.seconds : 14;
   }

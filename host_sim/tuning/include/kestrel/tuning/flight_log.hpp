@@ -33,7 +33,11 @@ struct FlightSpec {
   double duration_s = 30;             // simulated time limit
   double hover_s = 10;                // hover mission: time at the set-point
   std::vector<Eigen::Vector4f> waypoints;  // waypoints mission: x y z (m) heading (rad), world frame
-  std::string script_text;            // manual mission: CommandScript text ("" = the default tour)
+  // Manual mission: CommandScript text, and the name its errors carry. Empty text is an error
+  // ("the script has no commands"), as in kestrel-sim: it once meant the default tour, so an
+  // empty --script file flew that tour silently.
+  std::string script_text;
+  std::string script_name = "<script>";
   estimation::EkfParams ekf;          // the stack's filter parameters, as given (EkfParams' defaults, not the laser's: autonomy::vehicle_ekf_params)
   bool use_default_controller = true;
   control::ControllerParams controller;  // used when use_default_controller is false
