@@ -146,6 +146,31 @@ TEST(ConfigFile, LaserValuesBeyondTheirTypesAreRefused) {
   expect_convertible(cfg, "slow");
 }
 
+// Regression: these keys had no upper bound (or none at all), so 1e200 and the like were taken and
+// the flight's physics went NaN or absurd (a 1e10 m body collides at once).
+TEST(ConfigFile, PhysicalValuesBeyondSaneBoundsAreRefused) {
+  const struct {
+    const char* text;
+    const char* error;
+  } cases[] = {
+      {"vehicle.b_thrust = 1e200\n", "vehicle.b_thrust must be in [-50, 50] m/s^2"},
+      {"vehicle.gust_std_mps2 = 1e200\n", "vehicle.gust_std_mps2 must be in [0, 20] m/s^2"},
+      {"vehicle.gust_std_mps2 = 1e10\n", "vehicle.gust_std_mps2 must be in [0, 20] m/s^2"},
+      {"vehicle.body_radius_m = 1e10\n", "vehicle.body_radius_m must be in (0, 5] m"},
+      {"vehicle.k_thrust = 0\n", "vehicle.k_thrust must be in (0, 200] m/s^2"},
+      {"vehicle.k_pitch = 1e300\n", "vehicle.k_pitch must be in (0, 100] m/s^2 per rad"},
+      {"vehicle.max_yaw_rate_radps = 1e9\n", "vehicle.max_yaw_rate_radps must be in (0, 20] rad/s"},
+      {"imu.gravity_mps2 = -1e300\n", "imu.gravity_mps2 must be in [0, 50] m/s^2"},
+      {"laser.mount_z_m = -1e300\n", "laser.mount_x_m, mount_y_m and mount_z_m must each be in [-2, 2] m"},
+  };
+  for (const auto& c : cases) {
+    ConfigFile f;
+    ASSERT_EQ(f.parse(c.text, "c.cfg"), "");
+    SimConfig cfg;
+    EXPECT_EQ(cfg.apply(f), c.error) << c.text;
+  }
+}
+
 TEST(ConfigFile, RandomlyMutatedConfigsAreRefusedOrApplied) {
   const std::string base =
       "# tuning\n"

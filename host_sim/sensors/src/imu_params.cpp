@@ -25,6 +25,7 @@ const char* ImuParams::validate() const {
   if (!(accel_noise_density >= 0 && accel_bias_std >= 0 && accel_bias_walk >= 0 &&
         gyro_noise_density >= 0 && gyro_bias_std >= 0 && gyro_bias_walk >= 0))
     return "imu noise and bias parameters must be >= 0";
+  if (!(gravity_mps2 >= 0 && gravity_mps2 <= 50)) return "imu.gravity_mps2 must be in [0, 50] m/s^2";
   return "";
 }
 

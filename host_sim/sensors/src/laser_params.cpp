@@ -82,6 +82,8 @@ const char* LaserParams::validate() const {
     return "laser.dropout_probability must be in [0, 1]";
   if (!(deflected_beams >= 0 && deflected_beams < beam_count) || deflected_beams != std::floor(deflected_beams))
     return "laser.deflected_beams must be a whole number below beam_count";
+  if (!(std::fabs(mount_x_m) <= 2 && std::fabs(mount_y_m) <= 2 && std::fabs(mount_z_m) <= 2))
+    return "laser.mount_x_m, mount_y_m and mount_z_m must each be in [-2, 2] m";
   return "";
 }
 

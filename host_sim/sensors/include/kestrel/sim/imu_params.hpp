@@ -17,7 +17,7 @@ struct ImuParams {
   double gyro_noise_density = 0.0006;       // rad/s/√Hz
   double gyro_bias_std = 0.005;             // rad/s, per axis, drawn once
   double gyro_bias_walk = 0.00002;          // rad/s²/√Hz
-  double gravity_mps2 = 9.81;
+  double gravity_mps2 = 9.81;               // [0, 50] (-1e300 flew NaN)
 
   static constexpr std::size_t kBindingCount = 8;
   void bindings(ConfigBinding (&out)[kBindingCount]);

@@ -39,7 +39,7 @@ struct LaserParams {
   // height (paper 000, Figure 1); they read range_code::kDeflected in the scan. 0 = no mirror.
   double deflected_beams = 0;
   // The scanner's optical centre in the body frame (x fwd, y left, z up).
-  double mount_x_m = 0.0;
+  double mount_x_m = 0.0;  // each within +-2 m of the body's centre (-1e300 flew NaN)
   double mount_y_m = 0.0;
   double mount_z_m = 0.08;
 
