@@ -19,6 +19,7 @@
 
 #include "kestrel/cli/arg_reader.hpp"
 #include "kestrel/params/param_file.hpp"
+#include "kestrel/sim/builtin_worlds.hpp"
 #include "kestrel/tuning/ekf_tuning.hpp"
 
 namespace {
@@ -63,7 +64,8 @@ void help() {
       "                       (default 21,22); --no-accept skips the check\n"
       "  --hover-s S          length of each acceptance hover (default 15)\n"
       "  --help               this text\n"
-      "Exit status: 0 done, 1 a flight or the output failed, 2 bad usage.\n",
+      "Exit status: 0 done (the held-out objective reduced), 1 a flight or the output failed,\n"
+      "2 bad usage, 3 done but the held-out objective not reduced (the parameters are still written).\n",
       stdout);
 }
 
@@ -150,6 +152,12 @@ int main(int argc, char** argv) {
   if (o.help) {
     help();
     return 0;
+  }
+  // Checked before any flight: an unknown world was found only by the first flight (exit 1).
+  if (const sim::WorldParseResult w = sim::load_world(o.world); !w.ok) {
+    std::fprintf(stderr, "kestrel-tune-ekf: --world: %s\n", w.error.c_str());
+    usage(stderr);
+    return 2;
   }
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
