@@ -854,6 +854,36 @@ TEST(MissionController, ANaNEstimateOnTheWayHomeGivesAFiniteSetpoint) {
   EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
 }
 
+// The same on the very step exploring ends (review): the return's first set-point and the
+// heading it holds all the way home come from the estimate believed last, not a NaN one.
+TEST(MissionController, ANaNEstimateAsExploringEndsLeavesNoNaNInTheFlightHome) {
+  MissionRun r;
+  ExplorerOutput e;
+  ASSERT_EQ(r.mc.configure(MissionKind::kExplore, {}), Status::kOk);
+  e.setpoint.mode = GuidanceSetpoint::Mode::kVelocity;
+  ASSERT_TRUE(r.run_until(Phase::kExplore, 10, &e));
+  e.setpoint.velocity_mps = {0.5f, 0, 0};
+  for (int i = 0; i < 80; ++i) r.step(&e);
+  const Eigen::Vector3f believed = r.v.nav.position_m;
+  const float believed_heading = r.v.nav.heading_rad;
+  e.finished = true;
+  NavState nan_nav = r.v.nav;
+  nan_nav.position_m.setConstant(std::nanf(""));
+  nan_nav.heading_rad = std::nanf("");
+  nan_nav.stamp = r.t += Duration::from_ms(25);
+  const GuidanceSetpoint first = r.mc.step(r.t, nan_nav, &e);
+  ASSERT_EQ(r.mc.phase(), Phase::kReturn);
+  EXPECT_TRUE(first.position_m.allFinite());
+  EXPECT_TRUE(std::isfinite(first.heading_rad));
+  EXPECT_NEAR(first.position_m.x(), believed.x(), 0.02f);  // the last step's estimate, 25 ms before
+  EXPECT_FLOAT_EQ(first.heading_rad, believed_heading);
+  // The estimate back: the flight home's set-points stay finite all the way.
+  for (int i = 0; i < 400; ++i) {
+    const GuidanceSetpoint s = r.step(&e);
+    ASSERT_TRUE(s.position_m.allFinite() && s.velocity_mps.allFinite() && std::isfinite(s.heading_rad)) << i;
+  }
+}
+
 TEST(MissionController, StepsDoNotAllocate) {
   MissionRun r;
   ASSERT_EQ(r.mc.configure(MissionKind::kExplore, {}), Status::kOk);

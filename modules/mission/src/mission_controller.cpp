@@ -165,6 +165,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
     if (!seen_estimate_) first_estimate_ = t;
     last_valid_estimate_ = t;
     last_position_ = nav.position_m;
+    last_heading_ = nav.heading_rad;
     seen_estimate_ = true;
   }
   if (!configured_ || !seen_estimate_) return hold(now, Eigen::Vector3f::Zero(), 0);
@@ -253,9 +254,10 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         progress_index_ = return_index_ + 1;  // the first return step counts as progress
         shortcut_cursor_ = 0;
         progress_at_ = t;
-        hold_heading_ = nav.heading_rad;
+        // The estimate believed last: the heading is held through the flight home and landing.
+        hold_heading_ = last_heading_;
         enter(Phase::kReturn, t);
-        return hold(now, nav.position_m, hold_heading_);
+        return hold(now, last_position_, hold_heading_);
       }
       GuidanceSetpoint s = explorer->setpoint;
       if (!s.position_m.allFinite() || !s.velocity_mps.allFinite() || !std::isfinite(s.heading_rad)) {

@@ -187,6 +187,7 @@ class MissionController {
   bool seen_estimate_ = false;
   TimeUs first_estimate_;
   Eigen::Vector3f last_position_ = Eigen::Vector3f::Zero();  // of the last valid estimate
+  float last_heading_ = 0;
   Eigen::Vector3f home_ = Eigen::Vector3f::Zero();
   Eigen::Vector3f hold_point_ = Eigen::Vector3f::Zero();
   float hold_heading_ = 0;
