@@ -59,5 +59,40 @@ TEST(DeviceClock, ABoardClockThatStandsStillLeaksNothing) {
   EXPECT_EQ(c.to_board(TimeUs::from_us(1000)), TimeUs::from_s(50) - Duration::from_ms(2));
 }
 
+// Review: one stamp from hours ahead (a corrupted frame that passed its CRC) moved the offset
+// down for good, and every later stamp looked that much older. It is refused; a run of such
+// frames is a clock that restarted or stepped, and the offset is taken afresh.
+TEST(DeviceClock, ALoneStampFromFarAheadIsRefusedARunOfThemReseeds) {
+  DeviceClock c;
+  const TimeUs board0 = TimeUs::from_s(100);
+  int64_t i = 0;
+  auto frame = [&](int64_t stamp_shift_us) {
+    const TimeUs arrival = board0 + Duration::from_us(5000 * i + 1000);
+    const bool ok = c.observe(TimeUs::from_us(5000 * i + stamp_shift_us), arrival);
+    ++i;
+    return ok;
+  };
+  for (int k = 0; k < 10; ++k) ASSERT_TRUE(frame(0));
+  const int64_t settled = c.offset_us();
+  EXPECT_FALSE(frame(3'600'000'000));  // an hour ahead
+  EXPECT_NEAR(static_cast<double>(c.offset_us()), static_cast<double>(settled), 5.0);
+  EXPECT_TRUE(frame(-3'000'000));  // three seconds late: a stalled link's frame, kept
+  EXPECT_NEAR(static_cast<double>(c.offset_us()), static_cast<double>(settled), 5.0);
+  EXPECT_FALSE(c.observe(TimeUs::from_us(INT64_MAX), board0));  // beyond 2^62: refused outright
+  EXPECT_FALSE(c.observe(TimeUs::from_us(0), TimeUs::from_us(INT64_MIN)));
+  // The peer's clock steps 10 s ahead (a restart onto a clock set elsewhere): its first frames
+  // are refused as lone ones were, and after a run of them it is followed again. (A step of
+  // less than kMaxJumpUs back is not told from late frames: the stamps look that much older.)
+  const int64_t restart = 5000 * i - 10'000'000;
+  bool followed = false;
+  for (int k = 0; k < DeviceClock::kReseedFrames + 5; ++k) {
+    const TimeUs arrival = board0 + Duration::from_us(5000 * i + 1000);
+    (void)c.observe(TimeUs::from_us(5000 * i - restart), arrival);
+    followed = c.to_board(TimeUs::from_us(5000 * i - restart)) == arrival;
+    ++i;
+  }
+  EXPECT_TRUE(followed);
+}
+
 }  // namespace
 }  // namespace kestrel

@@ -132,6 +132,27 @@ TEST(HilClient, StampsAreMappedOntoTheBoardsClock) {
   FlightStatus got_st;
   ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.poll_status(got_st) == Status::kOk; }));
   EXPECT_NEAR(static_cast<double>(got_st.stamp.us), static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(6)).us), 3.0);
+  // A quicker frame: stamped 40 ms, arriving at its own stamp's board time less 2 ms of the
+  // delay all the others had. It moves the stamps by that saved delay and no more.
+  board.set(TimeUs::from_s(3600) + Duration::from_ms(13));
+  ImuSample quick;
+  quick.stamp = TimeUs::from_us(40'000);
+  send_msg(pair.server, HilType::kImu, quick);
+  ImuSample got_quick;
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.poll(got_quick) == Status::kOk; }));
+  EXPECT_NEAR(static_cast<double>(got_quick.stamp.us), static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(13)).us), 3.0);
+  // A stamp an hour ahead (damaged, yet through its CRC): dropped and counted, the offset kept.
+  board.advance(Duration::from_ms(5));
+  ImuSample wild;
+  wild.stamp = TimeUs::from_s(3600 + 3600);
+  send_msg(pair.server, HilType::kImu, wild);
+  ImuSample next;
+  next.stamp = TimeUs::from_us(45'000);
+  send_msg(pair.server, HilType::kImu, next);
+  ImuSample got_next;
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.poll(got_next) == Status::kOk; }));
+  EXPECT_EQ(hil.counters().bad_stamps, 1u);
+  EXPECT_NEAR(static_cast<double>(got_next.stamp.us), static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(18)).us), 3.0);
 }
 
 TEST(HilClient, SendsSetpointsAndArmCommands) {

@@ -283,7 +283,8 @@ int main(int argc, char** argv) {
                stack->finished() ? "finished" : "stopped", mission::to_string(stack->mission().phase()),
                stack->counters().scans, stack->counters().scans_matched, stack->silences().imu,
                stack->silences().scan);
-  // The mission's account: when each phase began, from the loop's start, and how the flight
+  // The mission's account: when each phase began, from the loop's start on the mission's own
+  // clock (a stalled loop counts at most 1 s a step there), and how the flight
   // home went (a landing soon after return began, not at home, is a flight home that stalled).
   const mission::MissionController& mission = stack->mission();
   std::fprintf(stderr, "kestrel-fw: phases");
@@ -298,8 +299,8 @@ int main(int argc, char** argv) {
                stack->counters().home_fixes, stack->counters().home_fixes_refused);
   // The link's health, for a bench test: damaged frames and bytes lost between frames.
   const platform::HilCounters& link = bridge.counters();
-  std::fprintf(stderr, "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u\n",
-               link.frames, link.crc_errors, link.skipped_bytes, link.malformed);
+  std::fprintf(stderr, "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u, bad stamps %u\n",
+               link.frames, link.crc_errors, link.skipped_bytes, link.malformed, link.bad_stamps);
   // The filter's counts: whether it refused input (and why) or drifted on good input.
   // The compact SLAM's counts (zero when it is off), read after level 3's thread has joined.
   const slam::SlamCounters& sc = stack->slam().counters();

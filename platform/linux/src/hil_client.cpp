@@ -29,12 +29,13 @@ void HilClient::dispatch(TimeUs arrival) {
   switch (static_cast<HilType>(decoder_.type())) {
     case HilType::kLaserScan:
       if (scan_fresh_) ++counters_.overwritten_scans;
-      if (comms::decode_payload(p, n, scan_) == Status::kOk) {
-        peer_clock_.observe(scan_.stamp, arrival);
-        scan_fresh_ = true;
-      } else {
-        scan_fresh_ = false;
+      scan_fresh_ = false;
+      if (comms::decode_payload(p, n, scan_) != Status::kOk) {
         ++counters_.malformed;
+      } else if (!peer_clock_.observe(scan_.stamp, arrival)) {
+        ++counters_.bad_stamps;
+      } else {
+        scan_fresh_ = true;
       }
       return;
     case HilType::kImu: {
@@ -43,7 +44,10 @@ void HilClient::dispatch(TimeUs arrival) {
         ++counters_.malformed;
         return;
       }
-      peer_clock_.observe(s.stamp, arrival);
+      if (!peer_clock_.observe(s.stamp, arrival)) {
+        ++counters_.bad_stamps;
+        return;
+      }
       if (!imu_queue_.push(s)) ++counters_.dropped_imu;
       return;
     }
@@ -53,16 +57,20 @@ void HilClient::dispatch(TimeUs arrival) {
         ++counters_.malformed;
         return;
       }
-      peer_clock_.observe(s.stamp, arrival);
+      if (!peer_clock_.observe(s.stamp, arrival)) {
+        ++counters_.bad_stamps;
+        return;
+      }
       (void)altitude_queue_.push(s);  // a lost altitude sample is harmless: the next follows
       return;
     }
     case HilType::kFlightStatus:
-      if (comms::decode_payload(p, n, status_) == Status::kOk) {
-        peer_clock_.observe(status_.stamp, arrival);
-        status_fresh_ = true;
-      } else {
+      if (comms::decode_payload(p, n, status_) != Status::kOk) {
         ++counters_.malformed;
+      } else if (!peer_clock_.observe(status_.stamp, arrival)) {
+        ++counters_.bad_stamps;
+      } else {
+        status_fresh_ = true;
       }
       return;
     default:

@@ -14,6 +14,13 @@
 // offset rises by up to kDriftAllowancePpm of the board time between frames before the
 // minimum is taken; the quickest frames of each second pull it back down.
 //
+// A stamp is a number off a link: one that would move the offset down by more than
+// kMaxJumpUs (a stamp from far ahead: a corrupted frame that passed its CRC, a confused peer)
+// is refused, not believed, or every later scan would look that much older. A run of
+// kReseedFrames frames all that far off, either way, is the device's clock restarted or
+// stepped: the offset is taken afresh from them. Stamps beyond +-2^62 us are refused outright
+// (the differences below stay within 64 bits).
+//
 // A driver that queues frames maps them as they are read out, after a whole backlog has been
 // observed: mapped as each arrived, a backlog's stamps would close up onto its last (all
 // arrived at once, each the quickest yet).
@@ -26,19 +33,36 @@ namespace kestrel {
 class DeviceClock {
  public:
   static constexpr int64_t kDriftAllowancePpm = 200;
+  static constexpr int64_t kMaxJumpUs = 1'000'000;
+  static constexpr int kReseedFrames = 40;
 
-  // A frame stamped `stamp` on the device's clock arrived at `arrival` on the board's.
-  void observe(TimeUs stamp, TimeUs arrival) {
+  // A frame stamped `stamp` on the device's clock arrived at `arrival` on the board's. False
+  // for a stamp refused (see above): the frame's stamp, and so the frame, cannot be trusted.
+  bool observe(TimeUs stamp, TimeUs arrival) {
+    constexpr int64_t kLimit = int64_t{1} << 62;
+    if (!(stamp.us > -kLimit && stamp.us < kLimit && arrival.us > -kLimit && arrival.us < kLimit)) return false;
     const int64_t offset = arrival.us - stamp.us;
-    if (known_ && arrival.us > last_arrival_us_) {
-      // Leaked in whole microseconds, the remainder carried, so slow frame rates leak too.
-      leak_ppm_us_ += (arrival.us - last_arrival_us_) * kDriftAllowancePpm;
-      offset_us_ += leak_ppm_us_ / 1'000'000;
-      leak_ppm_us_ %= 1'000'000;
+    if (known_) {
+      if (arrival.us > last_arrival_us_ && arrival.us - last_arrival_us_ < kLimit / kDriftAllowancePpm) {
+        // Leaked in whole microseconds, the remainder carried, so slow frame rates leak too.
+        leak_ppm_us_ += (arrival.us - last_arrival_us_) * kDriftAllowancePpm;
+        offset_us_ += leak_ppm_us_ / 1'000'000;
+        leak_ppm_us_ %= 1'000'000;
+      }
+      const bool far = offset < offset_us_ - kMaxJumpUs || offset > offset_us_ + kMaxJumpUs;
+      far_run_ = far ? far_run_ + 1 : 0;
+      if (far_run_ >= kReseedFrames) {
+        known_ = false;  // the device's clock restarted or stepped: start again from this frame
+        far_run_ = 0;
+      } else if (offset < offset_us_ - kMaxJumpUs) {
+        return false;  // a lone stamp from far ahead
+      }
+      // A lone frame far behind is a late one (a stalled link): its stamp is mapped as it is.
     }
     if (!known_ || offset < offset_us_) offset_us_ = offset;
     if (!known_ || arrival.us > last_arrival_us_) last_arrival_us_ = arrival.us;
     known_ = true;
+    return true;
   }
   // The board's time of a device stamp, by the offset observed so far (unchanged before any).
   TimeUs to_board(TimeUs stamp) const { return TimeUs{stamp.us + offset_us_}; }
@@ -50,6 +74,7 @@ class DeviceClock {
   int64_t offset_us_ = 0;
   int64_t last_arrival_us_ = 0;
   int64_t leak_ppm_us_ = 0;  // leak not yet a whole microsecond, in ppm x us
+  int far_run_ = 0;          // frames in a row more than kMaxJumpUs off the offset
 };
 
 }  // namespace kestrel

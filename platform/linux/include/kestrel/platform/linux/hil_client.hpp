@@ -27,6 +27,7 @@ namespace kestrel::platform {
 struct HilCounters {
   uint32_t frames = 0;
   uint32_t malformed = 0;          // frames whose payload did not decode
+  uint32_t bad_stamps = 0;         // frames dropped for a stamp DeviceClock refused
   uint32_t unknown_type = 0;
   uint32_t crc_errors = 0;         // frames dropped by their CRC or an impossible length
   uint32_t skipped_bytes = 0;      // outside any frame: noise, a damaged sync, a bad length's rest
