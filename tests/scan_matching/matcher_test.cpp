@@ -526,6 +526,9 @@ TEST(ScanMatcher, RejectsBadScans) {
   s.beam_count = 0;
   EXPECT_NE(r.m->process(s).measurement.flags & match_flag::kBadGeometry, 0u);
   s = good;
+  s.angle_step_rad = 0.5f * kMinAngleStepRad;  // what every other module refuses (fan_well_formed)
+  EXPECT_NE(r.m->process(s).measurement.flags & match_flag::kBadGeometry, 0u);
+  s = good;
   s.stamp = at(5);  // backwards
   m = r.m->process(s);
   EXPECT_FALSE(m.ok());

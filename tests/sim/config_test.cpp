@@ -132,6 +132,11 @@ TEST(ConfigFile, LaserValuesBeyondTheirTypesAreRefused) {
       {"laser.scan_period_s = 11\n", "laser.scan_period_s must be at most 10"},
       {"laser.first_angle_rad = 1e300\n", "laser angles must lie within [-2 pi, 2 pi]"},
       {"laser.angle_step_rad = -1e39\n", "laser angles must lie within [-2 pi, 2 pi]"},
+      // A fan every module would refuse: no step, or more than one turn.
+      {"laser.angle_step_rad = 0\n",
+       "laser.angle_step_rad must be at least 1e-4 rad either way, and beam_count steps at most one turn"},
+      {"laser.angle_step_rad = 0.01\n",
+       "laser.angle_step_rad must be at least 1e-4 rad either way, and beam_count steps at most one turn"},
   };
   for (const auto& c : cases) {
     ConfigFile f;

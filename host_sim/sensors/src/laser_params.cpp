@@ -75,6 +75,8 @@ const char* LaserParams::validate() const {
   constexpr double kTwoPi = 2 * std::numbers::pi;
   if (!(std::fabs(first_angle_rad) <= kTwoPi && std::fabs(angle_step_rad) <= kTwoPi))
     return "laser angles must lie within [-2 pi, 2 pi]";
+  if (!fan_angles_well_formed(beam_count, first_angle_rad, angle_step_rad))
+    return "laser.angle_step_rad must be at least 1e-4 rad either way, and beam_count steps at most one turn";
   if (!(scan_period_s * 1e6 >= beam_interval_us * beam_count))
     return "laser.scan_period_s is shorter than the sweep (beam_count * beam_interval_us)";
   if (!(sigma_near_m >= 0 && sigma_far_m >= 0 && sigma_rel >= 0)) return "laser noise must be >= 0";

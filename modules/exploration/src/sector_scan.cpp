@@ -100,9 +100,7 @@ Status SectorScan::begin(const LaserScan& scan, const SrtParams& params) {
   stage_ = Stage::kEmpty;
   frontiers_.clear();
   const std::size_t beams = scan.beam_count;
-  if (beams == 0 || beams > kMaxBeams || !std::isfinite(scan.first_angle_rad) || !std::isfinite(scan.angle_step_rad) ||
-      scan.angle_step_rad == 0.0f)
-    return Status::kInvalidArgument;
+  if (!scan.fan_well_formed()) return Status::kInvalidArgument;
   if (params.sector_count < 2 || params.sector_count > kMaxSectors || !(params.perception_range_m > 0.0f) ||
       !(params.discontinuity_m > 0.0f))
     return Status::kInvalidArgument;

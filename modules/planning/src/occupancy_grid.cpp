@@ -16,9 +16,7 @@ Status OccupancyGrid::configure(const GridParams& params, Point2 home, uint16_t 
                                 float angle_step_rad) {
   configured_ = false;
   if (params.validate() != Status::kOk) return Status::kInvalidArgument;
-  if (beam_count == 0 || beam_count > kMaxBeams || !std::isfinite(first_angle_rad) || !std::isfinite(angle_step_rad) ||
-      angle_step_rad == 0.0f)
-    return Status::kInvalidArgument;
+  if (!fan_angles_well_formed(beam_count, first_angle_rad, angle_step_rad)) return Status::kInvalidArgument;
   const Result<GridGeometry> g = GridGeometry::around(home, params.cell_m);
   if (!g.ok()) return Status::kInvalidArgument;
   params_ = params;

@@ -132,9 +132,7 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   m.stamp = scan.stamp;
   m.pose = last_pose_;
   m.covariance = Eigen::Matrix3f::Identity() * 1e6f;
-  if (scan.beam_count == 0 || scan.beam_count > kMaxBeams || !std::isfinite(scan.first_angle_rad) ||
-      !std::isfinite(scan.angle_step_rad) || scan.angle_step_rad == 0.0f ||
-      std::fabs(scan.angle_step_rad) * static_cast<float>(scan.beam_count) > 6.3f) {
+  if (!scan.fan_well_formed()) {
     m.flags = kRejected | kBadGeometry;
     return out;
   }

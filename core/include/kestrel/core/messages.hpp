@@ -29,11 +29,14 @@ inline constexpr float kMinAngleStepRad = 1e-4f;
 
 // Whether a fan of beams can be used at all, whatever module takes it: 1..kMaxBeams beams,
 // finite angles, a step no finer than kMinAngleStepRad (either sign), no more than one full
-// turn, and a maximum range that can hold a return.
-inline bool fan_well_formed(uint16_t beam_count, float first_angle_rad, float angle_step_rad, uint16_t max_range_mm) {
-  return beam_count > 0 && beam_count <= kMaxBeams && std::isfinite(first_angle_rad) &&
+// turn, and (fan_well_formed) a maximum range that can hold a return.
+inline bool fan_angles_well_formed(double beam_count, double first_angle_rad, double angle_step_rad) {
+  return beam_count >= 1 && beam_count <= static_cast<double>(kMaxBeams) && std::isfinite(first_angle_rad) &&
          std::isfinite(angle_step_rad) && std::fabs(angle_step_rad) >= kMinAngleStepRad &&
-         std::fabs(angle_step_rad) * static_cast<float>(beam_count) <= 6.2832f && max_range_mm >= kMinValidRangeMm;
+         std::fabs(angle_step_rad) * beam_count <= 6.2832;
+}
+inline bool fan_well_formed(uint16_t beam_count, float first_angle_rad, float angle_step_rad, uint16_t max_range_mm) {
+  return fan_angles_well_formed(beam_count, first_angle_rad, angle_step_rad) && max_range_mm >= kMinValidRangeMm;
 }
 
 struct LaserScan {
