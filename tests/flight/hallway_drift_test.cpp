@@ -24,6 +24,7 @@ TEST(HallwayClosedLoop, OneMetrePerSecondDriftsLessThanOnePercentOfTheHallway) {
   GTEST_SKIP() << "host preset only";
 #endif
   sim::Simulation s = test::simulate("iarc-arena", sim::LaserParams::utm30lx(), 1);
+  ASSERT_FALSE(HasFailure()) << "set-up";
   FlightOptions f;
   f.kind = f.stack.mission_kind = mission::MissionKind::kWaypoints;
   constexpr float kPi = 3.14159265f;

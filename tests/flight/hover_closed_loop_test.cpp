@@ -43,6 +43,7 @@ Flight fly_hover(const sim::LaserParams& laser, const char* world_name, double h
   if (slam) opt["slam"] = "on";
   AutonomyMission m(test::flight_options(mission::MissionKind::kHover, std::move(opt)));
   Flight out;
+  if (::testing::Test::HasFailure()) return out;  // the set-up's failure is reported; no flight
   out.run = sim::run_mission(s, m, Duration::from_s(hover_s + 12));
   m.metrics(out.metrics);
   out.finished = m.stack().finished();
@@ -156,6 +157,7 @@ TEST(HoverClosedLoop, AnEkfFileLoadsOverTheLasersDefaults) {
     sim::Simulation s =
         test::simulate("cluttered-lab", utm ? sim::LaserParams::utm30lx() : sim::LaserParams::urg04lx());
     AutonomyMission m(test::flight_options(mission::MissionKind::kHover, {{"ekf", path}}));
+    ASSERT_FALSE(HasFailure()) << "set-up";
     (void)sim::run_mission(s, m, Duration::from_s(0.5));
     const estimation::EkfParams& p = m.stack().filter().params();
     EXPECT_EQ(p.pose_cov_scale, 2.0f) << (utm ? "UTM-30LX" : "URG-04LX");

@@ -29,6 +29,7 @@ TEST(TrailClosedLoop, TheSlamsCorrectionsMoveTheBreadcrumbsRecordedSinceByTheFil
 #endif
   sim::Simulation s = test::simulate("gt-building", sim::LaserParams::urg04lx(), 2);
   AutonomyMission m(test::flight_options(mission::MissionKind::kExplore, {{"explorer", "blend"}}));
+  ASSERT_FALSE(HasFailure()) << "set-up";
   ASSERT_EQ(m.start(s), Status::kOk);
 
   const mission::BreadcrumbTrail& trail = m.stack().mission().trail();

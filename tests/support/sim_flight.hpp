@@ -1,8 +1,9 @@
 // What every closed-loop flight test of the autonomy stack sets up the same way: a built-in world in the
 // simulator with one laser and seed, the flight stack's options parsed from mission options
 // exactly as kestrel-sim parses its --mission-arg, and a metric read back from metrics.json's
-// list. A failure is reported to the running test (set-up problems are the test's failure,
-// not a reason to go on silently with defaults).
+// list. A set-up failure (an unknown world, a refused option) is reported to the running test,
+// which should stop there: `ASSERT_FALSE(HasFailure())` after the set-up, since these helpers
+// return a value and cannot end the test themselves.
 #pragma once
 
 #include <gtest/gtest.h>
