@@ -50,13 +50,14 @@ struct Options {
   std::string ekf_file, controller_file;
   std::string slam = "laser";  // on, off, or the laser's default
   double hover_s = 60;
+  double explore_s = 600;  // the mission's explore_time_limit_s
   double max_s = 900;
 };
 
 constexpr const char* kUsage =
     "usage: kestrel-fw (--hil HOST:PORT | --hokuyo DEV --autopilot DEV [--baud N])\n"
     "                  [--laser utm30lx|urg04lx] [--mission hover|explore] [--explorer blend|wallfollow|srt|frontier]\n"
-    "                  [--hover-s S] [--max-s S] [--ekf FILE] [--controller FILE] [--slam on|off]\n";
+    "                  [--hover-s S] [--explore-s S] [--max-s S] [--ekf FILE] [--controller FILE] [--slam on|off]\n";
 
 int usage(const char* why) {
   std::fprintf(stderr, "kestrel-fw: %s\n%s", why, kUsage);
@@ -73,6 +74,7 @@ int help() {
       "  --laser L          the laser model: utm30lx (default) or urg04lx\n"
       "  --mission M        hover (take off, hover --hover-s seconds (60), land; default) or explore\n"
       "  --explorer E       blend (default), wallfollow, srt or frontier, for --mission explore\n"
+      "  --explore-s S      explore at most S seconds (default 600), then fly home and land\n"
       "  --max-s S          stop after S seconds (default 900; at most 1e6, as --hover-s)\n"
       "  --ekf FILE         EKF parameter file (kestrel-tune-ekf writes one), over the laser's defaults\n"
       "  --controller FILE  controller parameter file (kestrel-sysid writes one)\n"
@@ -134,7 +136,7 @@ bool parse(int argc, char** argv, Options& o, std::string& err) {
     } else if (a == "--baud") {
       if (!value(v)) return false;
       if (!parse_whole(v, 1, kMaxBaud, o.baud)) return err = a + ": '" + v + "' is not a whole number of baud", false;
-    } else if (a == "--hover-s" || a == "--max-s") {
+    } else if (a == "--hover-s" || a == "--explore-s" || a == "--max-s") {
       if (!value(v)) return false;
       char* end = nullptr;
       const double d = std::strtod(v.c_str(), &end);
@@ -142,6 +144,7 @@ bool parse(int argc, char** argv, Options& o, std::string& err) {
       if (end == v.c_str() || *end != '\0' || !(d > 0 && d <= kMaxSeconds))
         return err = a + ": '" + v + "' is not a number of seconds in (0, 1e6]", false;
       if (a == "--hover-s") o.hover_s = d;
+      if (a == "--explore-s") o.explore_s = d;
       if (a == "--max-s") o.max_s = d;
     } else {
       err = "unknown option '" + a + "'";
@@ -178,6 +181,7 @@ int main(int argc, char** argv) {
   autonomy::StackConfig cfg;
   cfg.mission_kind = opt.mission == "explore" ? mission::MissionKind::kExplore : mission::MissionKind::kHover;
   cfg.mission.hover_duration_s = static_cast<float>(opt.hover_s);
+  cfg.mission.explore_time_limit_s = static_cast<float>(opt.explore_s);
   const Result<exploration::ExplorerKind> kind = exploration::parse_explorer_kind(opt.explorer.c_str());
   if (!kind.ok()) return usage(("unknown explorer '" + opt.explorer + "'").c_str());
   cfg.explorer_kind = kind.value();
