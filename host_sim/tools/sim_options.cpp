@@ -1,6 +1,7 @@
 #include "sim_options.hpp"
 
 #include "kestrel/cli/arg_reader.hpp"
+#include "kestrel/core/time.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -53,7 +54,7 @@ ParseOutcome parse_sim_options(int argc, char** argv) {
       o.laser = v;
     } else if (args.is("--duration")) {
       if (!args.take(v)) break;
-      if (!cli::to_double(v, o.duration_s) || o.duration_s <= 0 || o.duration_s > 1e6)
+      if (!cli::to_double(v, o.duration_s) || o.duration_s <= 0 || o.duration_s > kMaxRunSeconds)
         args.fail("--duration: '" + v + "' is not a positive number of seconds");
     } else if (args.is("--seed")) {
       args.take_u64(o.seed);

@@ -85,9 +85,6 @@ int help() {
   return 0;
 }
 
-// Seconds --max-s and --hover-s may ask for: kestrel-sim's longest --duration, and far inside
-// what Duration's microseconds hold.
-constexpr double kMaxSeconds = 1e6;
 constexpr int kMaxBaud = 4000000;
 
 // The whole of `s` as a decimal integer in [lo, hi]. Strict, unlike atoi, which took "5801x"
@@ -141,7 +138,7 @@ bool parse(int argc, char** argv, Options& o, std::string& err) {
       char* end = nullptr;
       const double d = std::strtod(v.c_str(), &end);
       // Bounded (NaN-safe): --max-s inf or 1e13 overflowed Duration and the run stopped at once.
-      if (end == v.c_str() || *end != '\0' || !(d > 0 && d <= kMaxSeconds))
+      if (end == v.c_str() || *end != '\0' || !(d > 0 && d <= kMaxRunSeconds))
         return err = a + ": '" + v + "' is not a number of seconds in (0, 1e6]", false;
       if (a == "--hover-s") o.hover_s = d;
       if (a == "--explore-s") o.explore_s = d;

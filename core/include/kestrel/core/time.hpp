@@ -6,6 +6,11 @@
 namespace kestrel {
 
 // A span of time, in microseconds. Signed so that differences of time points are natural.
+// The longest run any tool takes, in seconds (kestrel-sim's --duration and its scripts' steps,
+// kestrel-fw's --max-s, --hover-s and --explore-s): far inside what TimeUs's microseconds hold,
+// where a larger value once overflowed and a run or a step ended at once.
+inline constexpr double kMaxRunSeconds = 1e6;
+
 struct Duration {
   int64_t us = 0;
 

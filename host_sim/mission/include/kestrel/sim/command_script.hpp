@@ -17,7 +17,7 @@ namespace kestrel::sim {
 
 // The latest time a step may have: kestrel-sim's longest --duration. A later one would not fly,
 // and beyond ~9.2e12 s TimeUs::from_s overflowed and the step fired at t = 0.
-inline constexpr double kMaxScriptTimeS = 1e6;
+inline constexpr double kMaxScriptTimeS = kMaxRunSeconds;
 
 struct ScriptStep {
   double t_s = 0;
