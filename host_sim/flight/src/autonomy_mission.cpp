@@ -474,6 +474,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("home_fix_no_gain", hf.no_gain);
   out.emplace_back("home_fix_ambiguous", hf.ambiguous);
   out.emplace_back("home_fix_sees_through", hf.sees_through);
+  out.emplace_back("home_fix_returns_in_free", hf.returns_in_free);
   out.emplace_back("home_fix_confirmed", hf.confirmed);
   out.emplace_back("home_fixes", c.home_fixes);
   out.emplace_back("home_fixes_refused", c.home_fixes_refused);

@@ -88,7 +88,7 @@ void HomeFix::background_step() {
   const Input* in = in_.readable();
   if (in == nullptr) return;
   if (in->reference) {
-    if (relocaliser_.add_reference(in->points, in->pose) == Status::kOk) ++counters_.references;
+    if (relocaliser_.add_reference(in->points, in->pose, &in->scan) == Status::kOk) ++counters_.references;
   } else {
     ++counters_.searches;
     const scan_matching::Relocalisation r = relocaliser_.locate(in->points, in->pose, &in->scan);
@@ -98,6 +98,7 @@ void HomeFix::background_step() {
         case scan_matching::RelocaliseOutcome::kNoGain: ++counters_.no_gain; break;
         case scan_matching::RelocaliseOutcome::kAmbiguous: ++counters_.ambiguous; break;
         case scan_matching::RelocaliseOutcome::kSeesThrough: ++counters_.sees_through; break;
+        case scan_matching::RelocaliseOutcome::kReturnsInFree: ++counters_.returns_in_free; break;
         default: ++counters_.no_fit; break;
       }
     } else {

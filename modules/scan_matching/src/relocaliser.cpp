@@ -9,6 +9,32 @@ namespace kestrel::scan_matching {
 
 namespace {
 int cells(float m, float res) { return static_cast<int>(std::lround(m / res)); }
+
+// Walks the ray from `pose` at `angle` (world frame) cell by cell for reach_m, calling
+// visit(cell_x, cell_y) for each cell after the first until it returns true (then true).
+// About 100 steps for 4 m, in Q16 cells: the Verdex has no FPU, and in float the walk cost a
+// third of a search there.
+template <typename Visit>
+bool walk_cells(const LikelihoodMap& map, const Pose2& pose, float angle, float reach_m, Visit visit) {
+  constexpr float kOne = 65536.0f;
+  const float inv = 1.0f / map.resolution_m();
+  // int32 range: locate() takes a guess only within half the map of the reference (the map's
+  // centre), and the pose walked from is that guess moved within the search window (or a
+  // reference pose, within the map), so the start lies within a map's width of the map (at
+  // most 2047 cells); the walk adds at most two widths more. Three widths in Q16 cells are
+  // below 2^29.
+  const auto steps = static_cast<int32_t>(std::min(reach_m * inv, 2.0f * static_cast<float>(map.dim())));
+  auto x = static_cast<int32_t>(std::lround((pose.x - map.origin_x_m()) * inv * kOne));
+  auto y = static_cast<int32_t>(std::lround((pose.y - map.origin_y_m()) * inv * kOne));
+  const auto dx = static_cast<int32_t>(std::lround(std::cos(angle) * kOne));
+  const auto dy = static_cast<int32_t>(std::lround(std::sin(angle) * kOne));
+  for (int32_t k = 1; k <= steps; ++k) {
+    x += dx;
+    y += dy;
+    if (visit(x >> 16, y >> 16)) return true;  // arithmetic shift: floor
+  }
+  return false;
+}
 }  // namespace
 
 Status validate(const RelocaliserParams& p) {
@@ -17,7 +43,8 @@ Status validate(const RelocaliserParams& p) {
       !(p.window_m > 0.0f) || !(p.window_rad >= 0.0f && p.window_rad <= 1.0f) || !(p.min_score >= 0.0f && p.min_score <= 1.0f) ||
       p.min_points < 3 || !(p.min_gain >= 0.0f) || !(p.exclusion_m > 0.0f) || !(p.exclusion_m < p.window_m) ||
       !(p.max_second_ratio > 0.0f && p.max_second_ratio <= 1.0f) || !(p.max_see_through >= 0.0f && p.max_see_through <= 1.0f) ||
-      !(p.see_through_margin_m >= 0.0f && p.see_through_margin_m <= 5.0f) || !(p.wall_level > 0.0f && p.wall_level <= 1.0f))
+      !(p.see_through_margin_m >= 0.0f && p.see_through_margin_m <= 5.0f) || !(p.wall_level > 0.0f && p.wall_level <= 1.0f) ||
+      !(p.max_returns_in_free >= 0.0f && p.max_returns_in_free <= 1.0f))
     return Status::kInvalidArgument;
   if (cells(p.window_m, p.resolution_m) > kMaxWindowCells ||
       cells(p.window_rad, p.angle_step_rad) > kMaxThetaSteps)
@@ -36,10 +63,11 @@ Status Relocaliser::configure(const RelocaliserParams& p, const Params& matcher)
   matcher_ = m;
   extractor_.set_params(m);
   reference_count_ = 0;
+  seen_free_.reset();
   return Status::kOk;
 }
 
-Status Relocaliser::add_reference(const ScanPoints& pts, const Pose2& pose) {
+Status Relocaliser::add_reference(const ScanPoints& pts, const Pose2& pose, const LaserScan* scan) {
   if (!pose.finite()) return Status::kInvalidArgument;
   if (pts.count < params_.min_points) return Status::kNoData;
   if (reference_count_ >= kMaxReferenceScans) return Status::kCapacityExceeded;
@@ -47,11 +75,13 @@ Status Relocaliser::add_reference(const ScanPoints& pts, const Pose2& pose) {
   if (reference_count_ == 0) {
     map_.begin_centred(pose.x, pose.y);
     reference_pose_ = pose;
+    seen_free_.reset();
   }
   // A scan has at most kMaxPoints segments and dots, the list holds kMaxReferenceScans of them:
   // drawing cannot run out of room.
   (void)draw_contours(map_, pose, pts, contours_);
   map_.finish();  // over everything drawn so far: the pyramid is rebuilt, not added to
+  mark_seen_free(pts, scan, pose);
   ++reference_count_;
   return Status::kOk;
 }
@@ -65,38 +95,17 @@ float Relocaliser::second_peak_ratio(const GridPose& best) {
 }
 
 // Whether the ray from the pose at `angle` (world frame) meets a cell the reference drew as
-// wall within reach_m: walked cell by cell, about 100 lookups for 4 m, in Q16 cells (the
-// Verdex has no FPU: in float the walk cost a third of a search there).
+// wall within reach_m.
 bool Relocaliser::passes_a_wall(const Pose2& pose, float angle, float reach_m) const {
-  constexpr float kOne = 65536.0f;
-  const float inv = 1.0f / map_.resolution_m();
-  // int32 range: locate() takes a guess only within half the map of the reference (the map's
-  // centre), and the pose walked from is that guess moved within the search window, so the
-  // start lies within a map's width of the map (at most 2047 cells); the walk adds at most two
-  // widths more. Three widths in Q16 cells are below 2^29.
-  const auto steps = static_cast<int32_t>(std::min(reach_m * inv, 2.0f * static_cast<float>(map_.dim())));
   const auto wall = static_cast<uint8_t>(std::ceil(params_.wall_level * static_cast<float>(kCellMax)));
-  auto x = static_cast<int32_t>(std::lround((pose.x - map_.origin_x_m()) * inv * kOne));
-  auto y = static_cast<int32_t>(std::lround((pose.y - map_.origin_y_m()) * inv * kOne));
-  const auto dx = static_cast<int32_t>(std::lround(std::cos(angle) * kOne));
-  const auto dy = static_cast<int32_t>(std::lround(std::sin(angle) * kOne));
-  for (int32_t k = 1; k <= steps; ++k) {
-    x += dx;
-    y += dy;
-    if (map_.at(x >> 16, y >> 16) >= wall) return true;  // arithmetic shift: floor
-  }
-  return false;
+  return walk_cells(map_, pose, angle, reach_m, [&](int x, int y) { return map_.at(x, y) >= wall; });
 }
 
-// Of the beams walked (returns longer than the margin and, with the raw scan, beams that found
-// nothing), the share that pass a reference wall.
-float Relocaliser::see_through_fraction(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) const {
+template <typename Beam>
+void Relocaliser::for_each_beam(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose, Beam beam) const {
   const float margin = params_.see_through_margin_m;
-  int walked = 0, through = 0;
   const auto walk = [&](float angle, float reach) {
-    if (!(reach > map_.resolution_m())) return;
-    ++walked;
-    if (passes_a_wall(pose, angle, reach)) ++through;
+    if (reach > map_.resolution_m()) beam(angle, reach);
   };
   if (scan != nullptr && !(std::isfinite(scan->first_angle_rad) && std::isfinite(scan->angle_step_rad))) scan = nullptr;
   if (scan != nullptr) {
@@ -115,7 +124,48 @@ float Relocaliser::see_through_fraction(const ScanPoints& pts, const LaserScan* 
     for (uint16_t i = 0; i < pts.count; ++i)
       walk(pose.theta + std::atan2(pts.y[i], pts.x[i]), std::hypot(pts.x[i], pts.y[i]) - margin);
   }
+}
+
+// Of the beams walked (returns longer than the margin and, with the raw scan, beams that found
+// nothing), the share that pass a reference wall.
+float Relocaliser::see_through_fraction(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) const {
+  int walked = 0, through = 0;
+  for_each_beam(pts, scan, pose, [&](float angle, float reach) {
+    ++walked;
+    if (passes_a_wall(pose, angle, reach)) ++through;
+  });
   return walked > 0 ? static_cast<float>(through) / static_cast<float>(walked) : 0.0f;
+}
+
+void Relocaliser::mark_seen_free(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) {
+  const auto dim = static_cast<unsigned>(map_.dim());
+  for_each_beam(pts, scan, pose, [&](float angle, float reach) {
+    walk_cells(map_, pose, angle, reach, [&](int x, int y) {
+      if (static_cast<unsigned>(x) < dim && static_cast<unsigned>(y) < dim)
+        seen_free_[static_cast<std::size_t>(y) * dim + static_cast<unsigned>(x)] = true;
+      return false;
+    });
+  });
+}
+
+// Of the scan's returns placed at `pose`, the share in cells a reference beam crossed with no
+// reference wall within the kernel's reach (3 sigma): a beam grazing a wall marks cells beside
+// it, where the wall's own returns land.
+float Relocaliser::returns_in_free_fraction(const ScanPoints& pts, const Pose2& pose) const {
+  if (pts.count == 0) return 0.0f;
+  const float inv = 1.0f / map_.resolution_m();
+  const float c = std::cos(pose.theta), s = std::sin(pose.theta);
+  const auto dim = static_cast<unsigned>(map_.dim());
+  int in_free = 0;
+  for (uint16_t i = 0; i < pts.count; ++i) {
+    const float wx = pose.x + c * pts.x[i] - s * pts.y[i];
+    const float wy = pose.y + s * pts.x[i] + c * pts.y[i];
+    const auto x = static_cast<int>(std::floor((wx - map_.origin_x_m()) * inv));
+    const auto y = static_cast<int>(std::floor((wy - map_.origin_y_m()) * inv));
+    if (static_cast<unsigned>(x) >= dim || static_cast<unsigned>(y) >= dim || map_.at(x, y) != 0) continue;
+    if (seen_free_[static_cast<std::size_t>(y) * dim + static_cast<unsigned>(x)]) ++in_free;
+  }
+  return static_cast<float>(in_free) / static_cast<float>(pts.count);
 }
 
 Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess, const LaserScan* scan) {
@@ -153,6 +203,11 @@ Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess, co
   r.see_through = see_through_fraction(pts, scan, found);
   if (r.see_through > params_.max_see_through) {
     r.outcome = RelocaliseOutcome::kSeesThrough;
+    return r;
+  }
+  r.returns_in_free = returns_in_free_fraction(pts, found);
+  if (r.returns_in_free > params_.max_returns_in_free) {
+    r.outcome = RelocaliseOutcome::kReturnsInFree;
     return r;
   }
   r.pose = found;

@@ -78,6 +78,7 @@ struct HomeFixCounters {
   uint32_t no_gain = 0;      // ...whose best pose was not clearly better than the estimate's
   uint32_t ambiguous = 0;    // ...whose best pose had a rival
   uint32_t sees_through = 0; // ...whose best pose saw through the reference's walls
+  uint32_t returns_in_free = 0;  // ...whose best pose put returns where the reference saw through
   uint32_t confirmed = 0;    // ...agreeing with the one before: handed to the filter
 };
 

@@ -29,9 +29,17 @@
 //     likelihood rewards returns on walls and is blind to rays through them: from a room beside
 //     home, one metre past the corridor's wall, a scan fits the corridor 2 m away as well as
 //     where it was taken, save that the room's open side, where the laser found nothing,
-//     lies beyond the corridor's far wall. Without the raw scan, only returns are walked.
+//     lies beyond the corridor's far wall. Without the raw scan, only returns are walked;
+//   - nor puts walls where the reference saw through: placed at the best pose, at most
+//     max_returns_in_free of the scan's returns fall in cells a reference beam crossed (up to
+//     see_through_margin_m short of its return, or of the laser's reach for a beam that found
+//     nothing) and no reference wall lies near (the map's kernel is zero there). The mirror of
+//     the test above: in iarc-arena, a room beside home, a wall 1.5 m ahead, fits the hallway's
+//     end as well as home does, save that the hallway's wall there is a glass window the
+//     reference's beams passed through.
 //
 // No heap: the map (0.8 MiB with its pyramid) and the search are inside the object, allocated once.
+#include <bitset>
 #include <cstdint>
 
 #include "kestrel/core/messages.hpp"
@@ -64,6 +72,7 @@ struct RelocaliserParams {
   float max_see_through = 0.05f;     // beams through a reference wall, of those judged
   float see_through_margin_m = 0.3f; // a beam is walked to this short of its return
   float wall_level = 0.75f;          // a cell this much of kCellMax is on a wall (1 sigma)
+  float max_returns_in_free = 0.05f; // returns where a reference beam passed, of the scan's
 };
 
 // kInvalidArgument: a value out of range, or a window the map and search cannot hold.
@@ -77,6 +86,7 @@ enum class RelocaliseOutcome : uint8_t {
   kNoGain,       // best pose not min_gain better than the guess
   kAmbiguous,    // a second peak max_second_ratio as high
   kSeesThrough,  // at the best pose, beams pass through the reference's walls
+  kReturnsInFree,  // at the best pose, returns lie where the reference's beams passed
 };
 
 struct Relocalisation {
@@ -86,6 +96,7 @@ struct Relocalisation {
   float guess_score = 0;   // the guess's
   float second_ratio = 0;  // second peak / best
   float see_through = 0;   // beams through a reference wall at the best pose, of those judged
+  float returns_in_free = 0;  // returns where a reference beam passed, at the best pose, of all
   uint16_t points = 0;     // points judged at the best pose
   bool fixed() const { return outcome == RelocaliseOutcome::kFixed; }
 };
@@ -102,7 +113,9 @@ class Relocaliser {
   // Draws one more reference scan: its returns (sensor frame) and the sensor's pose when it was
   // taken. The first centres the map. kInvalidArgument for a pose that is not finite,
   // kNoData for fewer than min_points returns, kCapacityExceeded after kMaxReferenceScans.
-  Status add_reference(const ScanPoints& pts, const Pose2& pose);
+  // `scan`, the laser scan the points came from (optional), marks the space its beams that
+  // found nothing crossed as seen free too (without it, only the beams to returns).
+  Status add_reference(const ScanPoints& pts, const Pose2& pose, const LaserScan* scan = nullptr);
   // Where `pts` was taken, searched around `guess` (both in the reference's frame). `scan`,
   // the laser scan the points came from (optional), lets the beams that found nothing be
   // walked for the see-through check too.
@@ -118,10 +131,18 @@ class Relocaliser {
   float second_peak_ratio(const GridPose& best);
   float see_through_fraction(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) const;
   bool passes_a_wall(const Pose2& pose, float angle, float reach_m) const;
+  void mark_seen_free(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose);
+  float returns_in_free_fraction(const ScanPoints& pts, const Pose2& pose) const;
+  // Calls each beam of the scan (or, without it, each point) with its world angle and how far
+  // to walk it: see_through_margin_m short of its return, or of the laser's reach.
+  template <typename Beam>
+  void for_each_beam(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose, Beam beam) const;
 
   RelocaliserParams params_;
   Params matcher_;
   LikelihoodMapStorage<kRelocaliserMapDim, kMaxPoints * kMaxReferenceScans> map_;
+  // The map's cells a reference beam crossed (72 KiB): std::bitset holds them in place.
+  std::bitset<static_cast<std::size_t>(kRelocaliserMapDim) * kRelocaliserMapDim> seen_free_;
   ContourExtractor extractor_;
   Contours contours_;
   CorrelativeSearch search_;
