@@ -803,8 +803,10 @@ TEST(MissionController, RecordsWhenEachPhaseWasFirstEntered) {
   EXPECT_EQ(at, hover);
   EXPECT_TRUE(r.mc.first_entered(Phase::kLand, at));
   EXPECT_GT(at, hover + Duration::from_s(1.9));
+  const TimeUs land = at;
   EXPECT_FALSE(r.mc.first_entered(Phase::kExplore, at));
   EXPECT_FALSE(r.mc.first_entered(Phase::kFailsafeLand, at));
+  EXPECT_EQ(at, land);  // a phase never entered leaves `at` as it was
   ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
   EXPECT_FALSE(r.mc.first_entered(Phase::kTakeoff, at));
 }

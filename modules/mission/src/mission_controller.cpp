@@ -108,7 +108,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
   params_ = p;
   trail_ = BreadcrumbTrail(p.breadcrumb_spacing_m);
   phase_ = Phase::kIdle;
-  entered_.fill(false);
+  first_entered_at_.fill(std::nullopt);
   returned_home_ = false;
   stall_surveyed_ = false;
   shortcuts_ = 0;
@@ -122,14 +122,13 @@ void MissionController::enter(Phase p, TimeUs now) {
   phase_ = p;
   phase_start_ = now;
   const auto i = static_cast<std::size_t>(p);
-  if (!entered_[i]) first_entered_at_[i] = now;
-  entered_[i] = true;
+  if (!first_entered_at_[i]) first_entered_at_[i] = now;
 }
 
 bool MissionController::first_entered(Phase p, TimeUs& at) const {
   const auto i = static_cast<std::size_t>(p);
-  if (i >= kPhaseCount || !entered_[i]) return false;
-  at = first_entered_at_[i];
+  if (i >= kPhaseCount || !first_entered_at_[i]) return false;
+  at = *first_entered_at_[i];
   return true;
 }
 

@@ -31,6 +31,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 
 #include "kestrel/core/keep_out.hpp"
 #include "kestrel/core/messages.hpp"
@@ -178,8 +179,8 @@ class MissionController {
   BreadcrumbTrail trail_;
   Phase phase_ = Phase::kIdle;
   TimeUs phase_start_;
-  std::array<TimeUs, kPhaseCount> first_entered_at_{};
-  std::array<bool, kPhaseCount> entered_{};
+  // When each phase was first entered since configure(); empty: not yet (first_entered).
+  std::array<std::optional<TimeUs>, kPhaseCount> first_entered_at_{};
   TimeUs last_valid_estimate_;
   TimeUs last_step_;
   TimeUs clock_;  // the timers' clock: see the header comment
