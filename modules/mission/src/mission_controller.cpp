@@ -85,7 +85,8 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
       !(std::isfinite(p.realign_max_offset_m) && p.realign_max_offset_m >= 0 && p.realign_max_offset_m <= 1.0f) ||
       !(std::isfinite(p.home_survey_rad) && p.home_survey_rad >= 0 && p.home_survey_rad <= 4.0f * kPi<float>) ||
       !(std::isfinite(p.stall_survey_radius_m) && p.stall_survey_radius_m >= 0) ||
-      !(std::isfinite(p.takeoff_survey_rad) && p.takeoff_survey_rad >= 0 && p.takeoff_survey_rad <= 4.0f * kPi<float>) ||
+      !(std::isfinite(p.takeoff_survey_rad) && p.takeoff_survey_rad >= 0 &&
+        p.takeoff_survey_rad <= 4.0f * kPi<float>) ||
       !(std::isfinite(p.hover_duration_s) && p.hover_duration_s >= 0) ||
       !(std::isfinite(p.preflight_s) && p.preflight_s >= 0) ||
       !(std::isfinite(p.explore_time_limit_s) && p.explore_time_limit_s >= 0) ||
@@ -99,7 +100,8 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
     if (waypoints == nullptr || waypoints->empty()) return Status::kInvalidArgument;
     if (waypoints->size() > kMaxWaypoints) return Status::kCapacityExceeded;
     for (const Waypoint& w : *waypoints) {
-      if (!w.position_m.allFinite() || !std::isfinite(w.heading_rad) || !(std::isfinite(w.hold_s) && w.hold_s >= 0) || !(w.position_m.z() > 0))
+      if (!w.position_m.allFinite() || !std::isfinite(w.heading_rad) ||
+          !(std::isfinite(w.hold_s) && w.hold_s >= 0) || !(w.position_m.z() > 0))
         return Status::kInvalidArgument;
       (void)waypoints_.push_back(w);
     }
