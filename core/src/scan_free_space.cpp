@@ -55,7 +55,8 @@ Status ScanFreeSpace::build(const LaserScan& scan, const Pose2& laser, float nea
     }
     // Half a cell a step: the direction times 128 in Q8 cell units, rounded (a floor would lean
     // every ray towards -x and -y, by up to a quarter cell at the grid's edge).
-    draw_ray(origin_q8, origin_q8, half_cell_step(beam_c), half_cell_step(beam_s), ray_mm / kHalfCellMm, ends_at_return);
+    draw_ray(origin_q8, origin_q8, half_cell_step(beam_c), half_cell_step(beam_s), ray_mm / kHalfCellMm,
+             ends_at_return);
   }
   chamfer();
   built_ = true;

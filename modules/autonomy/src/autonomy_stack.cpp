@@ -24,7 +24,8 @@ Status AutonomyStack::configure(const StackConfig& c) {
     configure_error_ = "scan matcher parameters";
     return Status::kInvalidArgument;
   }
-  if (c.slam_enabled && (slam_.configure(c.slam) != Status::kOk || !(c.slam_period_s >= 0.0f && c.slam_period_s <= 10.0f))) {
+  if (c.slam_enabled &&
+      (slam_.configure(c.slam) != Status::kOk || !(c.slam_period_s >= 0.0f && c.slam_period_s <= 10.0f))) {
     configure_error_ = "SLAM parameters";
     return Status::kInvalidArgument;
   }
@@ -53,8 +54,8 @@ Status AutonomyStack::configure(const StackConfig& c) {
   // The home re-localisation's reference scans look all round home, but for the frontier
   // explorer's (home_fix.hpp).
   if (c.home_fix.enabled) {
-    mp.takeoff_survey_rad =
-        c.explorer_kind == exploration::ExplorerKind::kFrontier ? c.home_fix.frontier_survey_rad : c.home_fix.survey_rad;
+    mp.takeoff_survey_rad = c.explorer_kind == exploration::ExplorerKind::kFrontier ? c.home_fix.frontier_survey_rad
+                                                                                    : c.home_fix.survey_rad;
     mp.home_survey_rad = c.home_fix.home_survey_rad;
     mp.stall_survey_radius_m = c.home_fix.radius_m;  // where it searches
   }
@@ -251,7 +252,8 @@ void AutonomyStack::scan_task(TimeUs now) {
   scan_matching::PosePrior prior;
   const scan_matching::PosePrior* prior_ptr = scan_prior_from_nav(nav_, scan_.stamp, prior) ? &prior : nullptr;
   // The filter's frame has moved by the SLAM's corrections; the matcher's map has not.
-  if (prior_ptr != nullptr && filter_.counters().corrections > 0) prior = prior_in_matcher_frame(prior, filter_.frame_correction());
+  if (prior_ptr != nullptr && filter_.counters().corrections > 0)
+    prior = prior_in_matcher_frame(prior, filter_.frame_correction());
   last_match_ = matcher_.process(scan_, prior_ptr);
   new_match_ = true;
   // The laser is alive while it delivers scans the matcher could use: a scan with too few

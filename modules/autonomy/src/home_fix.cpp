@@ -7,10 +7,11 @@ namespace kestrel::autonomy {
 Status validate(const HomeFixConfig& c) {
   if (scan_matching::validate(c.search) != Status::kOk) return Status::kInvalidArgument;
   const auto in = [](float v, float lo, float hi) { return v >= lo && v <= hi; };  // false for NaN
-  if (!in(c.survey_rad, 0.0f, 12.5f) || !in(c.frontier_survey_rad, 0.0f, 12.5f) || !in(c.home_survey_rad, 0.0f, 12.5f) || !in(c.reference_window_s, 0.0f, 600.0f) || !in(c.reference_spacing_m, 0.1f, 20.0f) ||
-      !in(c.reference_turn_rad, 0.05f, 3.2f) || !in(c.radius_m, 0.0f, 12.0f) || !in(c.period_s, 0.05f, 60.0f) ||
-      !in(c.agree_m, 0.01f, 2.0f) || !in(c.agree_rad, 0.001f, 1.0f) || !in(c.view_change_m, 0.0f, 10.0f) ||
-      !in(c.view_change_rad, 0.0f, 3.2f))
+  if (!in(c.survey_rad, 0.0f, 12.5f) || !in(c.frontier_survey_rad, 0.0f, 12.5f) ||
+      !in(c.home_survey_rad, 0.0f, 12.5f) || !in(c.reference_window_s, 0.0f, 600.0f) ||
+      !in(c.reference_spacing_m, 0.1f, 20.0f) || !in(c.reference_turn_rad, 0.05f, 3.2f) ||
+      !in(c.radius_m, 0.0f, 12.0f) || !in(c.period_s, 0.05f, 60.0f) || !in(c.agree_m, 0.01f, 2.0f) ||
+      !in(c.agree_rad, 0.001f, 1.0f) || !in(c.view_change_m, 0.0f, 10.0f) || !in(c.view_change_rad, 0.0f, 3.2f))
     return Status::kInvalidArgument;
   return Status::kOk;
 }
@@ -29,7 +30,8 @@ Status HomeFix::configure(const HomeFixConfig& c, const scan_matching::Params& m
   return Status::kOk;
 }
 
-bool HomeFix::hand_over(const scan_matching::ScanPoints& points, const LaserScan& scan, const Pose2& pose, bool reference) {
+bool HomeFix::hand_over(const scan_matching::ScanPoints& points, const LaserScan& scan, const Pose2& pose,
+                        bool reference) {
   Input* in = in_.writable();
   // A fix not yet taken would leave a search's guess stale. Read after the input slot is found
   // free: level 3 posts a fix before it frees the slot, so a free slot shows it.
@@ -58,8 +60,9 @@ void HomeFix::offer(const scan_matching::ScanPoints& points, const LaserScan& sc
   const bool collecting = references_offered_ < scan_matching::kMaxReferenceScans &&
                           (stamp - first_stamp_).seconds() <= static_cast<double>(config_.reference_window_s);
   if (collecting) {
-    const bool moved = std::hypot(pose.x - last_reference_.x, pose.y - last_reference_.y) >= config_.reference_spacing_m ||
-                       std::fabs(wrap_angle(pose.theta - last_reference_.theta)) >= config_.reference_turn_rad;
+    const bool moved =
+        std::hypot(pose.x - last_reference_.x, pose.y - last_reference_.y) >= config_.reference_spacing_m ||
+        std::fabs(wrap_angle(pose.theta - last_reference_.theta)) >= config_.reference_turn_rad;
     if (moved && may_reference && hand_over(points, scan, pose, true)) {
       last_reference_ = pose;
       ++references_offered_;
@@ -109,10 +112,12 @@ void HomeFix::background_step() {
       // 0.16 m apart at a home 8 m from the origin, though both fixes put the vehicle within a
       // centimetre of the same pose.
       const Pose2 predicted = pending_.compose(in->pose);
-      const bool agrees = have_pending_ && std::hypot(predicted.x - r.pose.x, predicted.y - r.pose.y) <= config_.agree_m &&
+      const bool agrees = have_pending_ &&
+                          std::hypot(predicted.x - r.pose.x, predicted.y - r.pose.y) <= config_.agree_m &&
                           std::fabs(wrap_angle(predicted.theta - r.pose.theta)) <= config_.agree_rad;
-      const bool new_view = std::hypot(in->pose.x - pending_view_.x, in->pose.y - pending_view_.y) >= config_.view_change_m ||
-                            std::fabs(wrap_angle(in->pose.theta - pending_view_.theta)) >= config_.view_change_rad;
+      const bool new_view =
+          std::hypot(in->pose.x - pending_view_.x, in->pose.y - pending_view_.y) >= config_.view_change_m ||
+          std::fabs(wrap_angle(in->pose.theta - pending_view_.theta)) >= config_.view_change_rad;
       if (agrees && new_view) {
         PoseMeasurement2* out = out_.writable();
         *out = {};

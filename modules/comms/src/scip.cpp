@@ -168,7 +168,8 @@ std::size_t scip_encode_md_scan(uint16_t start_step, uint16_t end_step, uint32_t
     ++n;
   };
   char echo[20];
-  std::snprintf(echo, sizeof(echo), "MD%04u%04u01000", static_cast<unsigned>(start_step), static_cast<unsigned>(end_step));
+  std::snprintf(echo, sizeof(echo), "MD%04u%04u01000", static_cast<unsigned>(start_step),
+                static_cast<unsigned>(end_step));
   for (int i = 0; i < 15; ++i) put(static_cast<uint8_t>(echo[i]));
   put('\n');
   const uint8_t status[2] = {'9', '9'};
@@ -185,8 +186,8 @@ std::size_t scip_encode_md_scan(uint16_t start_step, uint16_t end_step, uint32_t
   std::size_t bl = 0;
   for (std::size_t i = 0; i < count; ++i) {
     const uint32_t v = ranges[i];  // 16 bits always fit the 18 of the 3-character encoding
-    const uint8_t c[3] = {static_cast<uint8_t>(((v >> 12) & 0x3F) + 0x30), static_cast<uint8_t>(((v >> 6) & 0x3F) + 0x30),
-                          static_cast<uint8_t>((v & 0x3F) + 0x30)};
+    const uint8_t c[3] = {static_cast<uint8_t>(((v >> 12) & 0x3F) + 0x30),
+                          static_cast<uint8_t>(((v >> 6) & 0x3F) + 0x30), static_cast<uint8_t>((v & 0x3F) + 0x30)};
     for (uint8_t ch : c) {
       block[bl++] = ch;
       if (bl == 64) {

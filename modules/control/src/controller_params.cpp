@@ -63,7 +63,8 @@ std::array<params::ParamField, kControllerParamCount> controller_param_fields(Co
       {"max_thrust", &p.max_thrust, 0.0f, 1.0f, "1", "highest thrust command"},
       {"max_yaw_rate_radps", &p.max_yaw_rate_radps, 0.01f, 10.0f, "rad/s", "limit of |yaw rate|"},
       {"max_position_error_m", &p.max_position_error_m, 0.01f, 100.0f, "m", "position errors are clipped to this"},
-      {"max_velocity_error_mps", &p.max_velocity_error_mps, 0.01f, 100.0f, "m/s", "velocity errors are clipped to this"},
+      {"max_velocity_error_mps", &p.max_velocity_error_mps, 0.01f, 100.0f, "m/s",
+       "velocity errors are clipped to this"},
   }};
 }
 

@@ -4,7 +4,8 @@ namespace kestrel::estimation {
 
 std::array<params::ParamField, kEkfParamCount> ekf_param_fields(EkfParams& p) {
   return {{
-      {"accel_noise_xy", &p.accel_noise_xy, 1e-9f, 1e3f, "(m/s^2)^2/Hz", "accelerometer white noise density, horizontal"},
+      {"accel_noise_xy", &p.accel_noise_xy, 1e-9f, 1e3f, "(m/s^2)^2/Hz",
+       "accelerometer white noise density, horizontal"},
       {"accel_noise_z", &p.accel_noise_z, 1e-9f, 1e3f, "(m/s^2)^2/Hz", "accelerometer white noise density, vertical"},
       {"accel_bias_walk", &p.accel_bias_walk, 1e-14f, 1e2f, "(m/s^3)^2/Hz", "accelerometer bias random walk density"},
       {"gyro_noise", &p.gyro_noise, 1e-12f, 1e1f, "(rad/s)^2/Hz", "yaw gyro white noise density"},
@@ -21,7 +22,8 @@ std::array<params::ParamField, kEkfParamCount> ekf_param_fields(EkfParams& p) {
       {"init_heading_var", &p.init_heading_var, 1e-10f, 1e1f, "rad^2", "initial heading variance"},
       {"init_gyro_bias_var", &p.init_gyro_bias_var, 1e-12f, 1e0f, "(rad/s)^2", "initial gyro bias variance"},
       {"pose_gate_chi2", &p.pose_gate_chi2, 0.1f, 1e6f, "1", "gate on the pose innovation, chi-square 3 dof"},
-      {"altitude_gate_chi2", &p.altitude_gate_chi2, 0.1f, 1e6f, "1", "gate on the altitude innovation, chi-square 1 dof"},
+      {"altitude_gate_chi2", &p.altitude_gate_chi2, 0.1f, 1e6f, "1",
+       "gate on the altitude innovation, chi-square 1 dof"},
       {"max_correction_m", &p.max_correction_m, 0.0f, 1e3f, "m", "largest accepted SLAM correction"},
       {"max_imu_gap_s", &p.max_imu_gap_s, 1e-3f, 10.0f, "s", "longer IMU gaps restart the state history"},
       {"max_future_s", &p.max_future_s, 0.0f, 1.0f, "s", "how far a measurement may lead the newest IMU sample"},

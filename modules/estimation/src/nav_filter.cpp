@@ -184,7 +184,8 @@ Status NavFilter::predict(const ImuSample& imu) {
     // history here: nothing before the gap can be replayed across it.
     ++counters_.imu_gaps;
     for (AxisState& a : cur_.ax) {
-      axis_predict(a, a.x(2), dt, AxisNoise{params_.accel_noise_xy, params_.accel_bias_walk, params_.position_walk}, 0.0f);
+      axis_predict(a, a.x(2), dt, AxisNoise{params_.accel_noise_xy, params_.accel_bias_walk, params_.position_walk},
+                   0.0f);
     }
     heading_predict(cur_.hd, cur_.hd.x(1), dt, params_.gyro_noise, params_.gyro_bias_walk);
     cur_.accel_world.setZero();

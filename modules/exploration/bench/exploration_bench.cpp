@@ -359,7 +359,9 @@ struct FrontierHall {
     if (replan_every_cycle) p.frontier.replan_period_s = 1e-3f;
     p.frontier.draw_period_s = 0.0f;
     if (ex->configure(p, BeamGeometry::of(world.scan(laser, 1, 5, 0))) != Status::kOk) return false;
-    for (int k = 0; k < 80; ++k) cycle(1.0f + 0.07f * static_cast<float>(k), 5.0f + std::sin(0.1f * static_cast<float>(k)), 0.08f * static_cast<float>(k), true);
+    for (int k = 0; k < 80; ++k)
+      cycle(1.0f + 0.07f * static_cast<float>(k), 5.0f + std::sin(0.1f * static_cast<float>(k)),
+            0.08f * static_cast<float>(k), true);
     return ex->plan_in_flight().has_goal;
   }
   void cycle(float x, float y, float heading, bool level3) {
@@ -412,7 +414,9 @@ BENCHMARK(BM_SectorScanUrg)->Name("exploration/sector_scan/urg04lx_682");
 BENCHMARK(BM_SectorScanCorridorUrg)->Name("exploration/sector_scan/urg04lx_682_corridor");
 BENCHMARK(BM_SectorScanTablesUrg)->Name("exploration/sector_scan_new_tables/urg04lx_682");
 BENCHMARK(BM_SrtArrivalCyclesUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682")->DenseRange(1, 8);
-BENCHMARK(BM_SrtArrivalCyclesCorridorUrg)->Name("exploration/srt_arrival_cycles/urg04lx_682_corridor")->DenseRange(1, 16);
+BENCHMARK(BM_SrtArrivalCyclesCorridorUrg)
+    ->Name("exploration/srt_arrival_cycles/urg04lx_682_corridor")
+    ->DenseRange(1, 16);
 BENCHMARK(BM_SrtArrivalCyclesUtm)->Name("exploration/srt_arrival_cycles/utm30lx_1081")->DenseRange(1, 8);
 BENCHMARK(BM_SrtRetraceCyclesUrg)->Name("exploration/srt_retrace_cycles/urg04lx_682")->DenseRange(0, 24);
 BENCHMARK(BM_UnflownCount)->Name("exploration/unflown_count");

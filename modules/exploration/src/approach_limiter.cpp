@@ -28,7 +28,8 @@ Status ApproachLimiter::configure(const ApproachParams& params, const BeamGeomet
   const double fov = step * (geometry.beam_count - 1);
   const double ccw_end = geometry.angle_step_rad > 0 ? geometry.first_angle_rad + fov : geometry.first_angle_rad;
   const double blind = 2.0 * M_PI - fov;
-  const int samples = std::clamp(static_cast<int>(std::floor(blind / kBlindSpacingRad)), 0, static_cast<int>(kMaxBlind));
+  const int samples =
+      std::clamp(static_cast<int>(std::floor(blind / kBlindSpacingRad)), 0, static_cast<int>(kMaxBlind));
   blind_count_ = static_cast<uint8_t>(samples);
   for (int k = 0; k < samples; ++k) {
     const double a = ccw_end + blind * (k + 1) / (samples + 1);

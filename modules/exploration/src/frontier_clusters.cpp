@@ -88,8 +88,9 @@ void FrontierClusterFinder::find_impl(const OccupancyGrid& grid, const GridSearc
       }
       if (out.full()) {
         // Keep the cheapest: replace the dearest if this one is cheaper.
-        auto worst = std::max_element(out.begin(), out.end(),
-                                      [](const FrontierCluster& a, const FrontierCluster& b2) { return a.cost < b2.cost; });
+        auto worst = std::max_element(out.begin(), out.end(), [](const FrontierCluster& a, const FrontierCluster& b2) {
+          return a.cost < b2.cost;
+        });
         ++dropped_;
         if (c.cost < worst->cost) *worst = c;
         continue;

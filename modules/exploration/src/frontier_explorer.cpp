@@ -191,7 +191,8 @@ void FrontierExplorer::background_step() {
     drew = true;
   }
   if (!drew) return;
-  if (!planned_ || arrived_ || stamp_ - last_plan_ >= Duration::from_s(params_.frontier.replan_period_s)) replan(stamp_);
+  if (!planned_ || arrived_ || stamp_ - last_plan_ >= Duration::from_s(params_.frontier.replan_period_s))
+    replan(stamp_);
 }
 
 void FrontierExplorer::add_to_blacklist(const Point2& p) {
@@ -240,7 +241,8 @@ void FrontierExplorer::judge_goal(TimeUs now) {
     ++level3_.stuck;
     stuck_since_ = now;
     add_to_blacklist(goal);
-  } else if (now - last_progress_ > Duration::from_s(fp.patience_s) || now - goal_since_ > Duration::from_s(fp.goal_time_limit_s)) {
+  } else if (now - last_progress_ > Duration::from_s(fp.patience_s) ||
+             now - goal_since_ > Duration::from_s(fp.goal_time_limit_s)) {
     last_progress_ = now;  // the next goal gets its own patience
     add_to_blacklist(goal);
   }
@@ -296,7 +298,9 @@ void FrontierExplorer::replan(TimeUs now) {
   if (!search_frontiers(fp.lethal_m, box, start)) return;
   if (homing_) {
     // The relaxed search, if the strict one finds no way home.
-    if (!search_.reached(home_cell_) && fp.relaxed_lethal_m > 0.0f && !search_frontiers(fp.relaxed_lethal_m, box, start)) return;
+    if (!search_.reached(home_cell_) && fp.relaxed_lethal_m > 0.0f &&
+        !search_frontiers(fp.relaxed_lethal_m, box, start))
+      return;
     plan_home();
     return;
   }
@@ -312,13 +316,14 @@ void FrontierExplorer::replan(TimeUs now) {
   // would otherwise take turns); else the cheapest frontier.
   const FrontierCluster* best = clusters_.empty() ? nullptr : &clusters_[0];
   bool keep = false;
-  if (goal_active_ && search_.reached(goal_cell_) && FrontierClusterFinder::is_frontier(grid_, goal_cell_.x, goal_cell_.y) &&
-      !in_blacklist(geo.centre_of(goal_cell_)))
+  if (goal_active_ && search_.reached(goal_cell_) &&
+      FrontierClusterFinder::is_frontier(grid_, goal_cell_.x, goal_cell_.y) && !in_blacklist(geo.centre_of(goal_cell_)))
     keep = best == nullptr || !(best->cost + cost_of(fp.switch_margin_m, geo.cell_m) < search_.cost(goal_cell_));
   const bool have_goal = keep || best != nullptr;
   const Cell target = keep ? goal_cell_ : (best != nullptr ? best->nearest : Cell{});
   // A new goal, or the same one (a goal's nearest cell moves as its frontier recedes).
-  const bool same_goal = have_goal && goal_active_ && distance(geo.centre_of(target), geo.centre_of(goal_cell_)) <= fp.goal_match_m;
+  const bool same_goal =
+      have_goal && goal_active_ && distance(geo.centre_of(target), geo.centre_of(goal_cell_)) <= fp.goal_match_m;
 
   outgoing_ = FrontierPlan{};
   outgoing_.stamp = now;
@@ -381,8 +386,8 @@ uint8_t FrontierExplorer::coastal_units() const {
 bool FrontierExplorer::search_frontiers(float lethal_m, const CellBox& box, Cell start) {
   const FrontierParams& fp = params_.frontier;
   const float cell_m = grid_.geometry().cell_m;
-  planning::SearchCosts costs{ObstacleDistance::units_of(lethal_m, cell_m), ObstacleDistance::units_of(fp.soft_m, cell_m),
-                              fp.soft_penalty};
+  planning::SearchCosts costs{ObstacleDistance::units_of(lethal_m, cell_m),
+                              ObstacleDistance::units_of(fp.soft_m, cell_m), fp.soft_penalty};
   const uint8_t coast = coastal_units();
   if (coast > 0) {
     costs.far = coast;

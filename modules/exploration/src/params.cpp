@@ -100,15 +100,15 @@ Status FrontierParams::validate() const {
   const bool distances_ok = within_reach(min_frontier_m) && within_reach(blacklist_radius_m) &&
                             within_reach(goal_match_m) && within_reach(look_distance_m) &&
                             within_reach(progress_m) && within_reach(stuck_radius_m) && within_reach(switch_margin_m);
-  const bool ok = distances_ok && cell_m >= 0.02f && cell_m <= 1.0f && positive(reach_m) && reach_m <= 60.0f && positive(lethal_m) &&
-                  non_negative(relaxed_lethal_m) && relaxed_lethal_m <= lethal_m && soft_m >= lethal_m && soft_m <= 10.0f && soft_penalty <= 60 &&
-                  non_negative(coastal_fraction) && coastal_fraction <= 1.0f && soft_penalty + coastal_penalty <= 60 &&
-                  non_negative(goal_inset_m) && goal_inset_m <= 5.0f && positive(lookahead_m) && lookahead_m <= 10.0f &&
-                  non_negative(field_weight) && field_weight <= 10.0f && non_negative(draw_period_s) &&
-                  draw_period_s <= 2.0f && positive(replan_period_s) && replan_period_s <= 2.5f &&
-                  positive(progress_m) && positive(patience_s) && positive(goal_time_limit_s) &&
-                  looks_to_give_up >= 1 && positive(stuck_radius_m) && positive(stuck_time_s) &&
-                  empty_plans_to_finish >= 1;
+  const bool ok = distances_ok && cell_m >= 0.02f && cell_m <= 1.0f && positive(reach_m) && reach_m <= 60.0f &&
+                  positive(lethal_m) && non_negative(relaxed_lethal_m) && relaxed_lethal_m <= lethal_m &&
+                  soft_m >= lethal_m && soft_m <= 10.0f && soft_penalty <= 60 && non_negative(coastal_fraction) &&
+                  coastal_fraction <= 1.0f && soft_penalty + coastal_penalty <= 60 && non_negative(goal_inset_m) &&
+                  goal_inset_m <= 5.0f && positive(lookahead_m) && lookahead_m <= 10.0f && non_negative(field_weight) &&
+                  field_weight <= 10.0f && non_negative(draw_period_s) && draw_period_s <= 2.0f &&
+                  positive(replan_period_s) && replan_period_s <= 2.5f && positive(progress_m) &&
+                  positive(patience_s) && positive(goal_time_limit_s) && looks_to_give_up >= 1 &&
+                  positive(stuck_radius_m) && positive(stuck_time_s) && empty_plans_to_finish >= 1;
   // Distances become chamfer units of a third of a cell, at most 255.
   return ok && soft_m / cell_m * 3.0f < 255.0f ? Status::kOk : Status::kInvalidArgument;
 }

@@ -138,7 +138,8 @@ Status SectorScan::begin(const LaserScan& scan, const SrtParams& params) {
     const uint16_t r = scan.range_mm[i];
     if (r >= kMinValidRangeMm || r == range_code::kNoReturn) {
       const int32_t here = r == range_code::kNoReturn ? no_return_mm : int32_t{r};
-      if (previous_mm >= 0 && std::abs(here - previous_mm) > jump_mm_) beam_jump_[s] = beam_jump_[previous_sector] = true;
+      if (previous_mm >= 0 && std::abs(here - previous_mm) > jump_mm_)
+        beam_jump_[s] = beam_jump_[previous_sector] = true;
       previous_mm = here;
       previous_sector = s;
     }

@@ -185,8 +185,8 @@ Status SrtStarPlanner::update(const Pose2& pose, const LaserScan& scan, TimeUs n
     // A retrace's legs but the last are arrived at within their own distance, smaller or larger
     // than d (set_retrace_waypoint).
     const float radius = mode_ == PlannerMode::kRetrace && retrace_arrival_m_ > 0.0f ? retrace_arrival_m_
-                         : aligning_                                                ? 0.5f * guidance_.arrival_distance_m
-                                                                                    : guidance_.arrival_distance_m;
+                         : aligning_ ? 0.5f * guidance_.arrival_distance_m
+                                     : guidance_.arrival_distance_m;
     const float dist = std::sqrt(dx * dx + dy * dy);
     if (dist < closest_m_ - kProgressM) {
       closest_m_ = dist;

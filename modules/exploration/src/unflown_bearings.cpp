@@ -25,8 +25,9 @@ UnflownBearings::UnflownBearings() {
     for (int dx = -kReachCells; dx <= kReachCells; ++dx) {
       const std::size_t i = static_cast<std::size_t>((dy + kReachCells) * kSide + (dx + kReachCells));
       const bool inside = dx * dx + dy * dy <= kReachCells * kReachCells && (dx != 0 || dy != 0);
-      bin_of_offset_[i] = inside ? static_cast<uint8_t>(bin_of(std::atan2(static_cast<float>(dy), static_cast<float>(dx))))
-                                 : kBeyondReach;
+      bin_of_offset_[i] = inside
+                              ? static_cast<uint8_t>(bin_of(std::atan2(static_cast<float>(dy), static_cast<float>(dx))))
+                              : kBeyondReach;
       const float distance = std::hypot(static_cast<float>(dx), static_cast<float>(dy));
       weight_of_offset_[i] = inside ? static_cast<uint8_t>(std::lround(static_cast<float>(kReachCells) / distance)) : 0;
     }
@@ -56,7 +57,8 @@ uint32_t UnflownBearings::score(float bearing_rad) const {
   const int centre = bin_of(bearing_rad);
   if (centre < 0) return 0;
   uint32_t n = 0;
-  for (int k = -kHalfConeBins; k <= kHalfConeBins; ++k) n += cells_[static_cast<std::size_t>((centre + k + kBins) % kBins)];
+  for (int k = -kHalfConeBins; k <= kHalfConeBins; ++k)
+    n += cells_[static_cast<std::size_t>((centre + k + kBins) % kBins)];
   return n;
 }
 

@@ -37,8 +37,8 @@ LaserScan scan_at(const Pose2& at, const Laser& l) { return hall().scan(l, at.x,
 // The hall drawn from a walk along it and through the door.
 std::unique_ptr<OccupancyGrid> drawn_hall(const Laser& l) {
   auto grid = std::make_unique<OccupancyGrid>();
-  if (grid->configure(GridParams{}, {2, 2}, l.beams, static_cast<float>(l.first_angle()), static_cast<float>(l.step())) !=
-      Status::kOk)
+  if (grid->configure(GridParams{}, {2, 2}, l.beams, static_cast<float>(l.first_angle()),
+                      static_cast<float>(l.step())) != Status::kOk)
     return nullptr;
   for (int k = 0; k < 60; ++k) {
     const float t = static_cast<float>(k) / 59.0f;

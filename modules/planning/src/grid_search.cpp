@@ -13,7 +13,8 @@ struct Step {
   int dx, dy;
   uint16_t base;
 };
-constexpr Step kSteps[8] = {{1, 0, 10}, {-1, 0, 10}, {0, 1, 10}, {0, -1, 10}, {1, 1, 14}, {1, -1, 14}, {-1, 1, 14}, {-1, -1, 14}};
+constexpr Step kSteps[8] = {{1, 0, 10}, {-1, 0, 10}, {0, 1, 10},  {0, -1, 10},
+                            {1, 1, 14}, {1, -1, 14}, {-1, 1, 14}, {-1, -1, 14}};
 
 }  // namespace
 
@@ -42,7 +43,8 @@ Status GridSearch::run(const OccupancyGrid& grid, const ObstacleDistance& distan
   box_ = {};
   peak_open_ = 0;
   if (costs.validate() != Status::kOk) return Status::kInvalidArgument;
-  const CellBox b{std::max(0, box.x0), std::max(0, box.y0), std::min(kGridSide - 1, box.x1), std::min(kGridSide - 1, box.y1)};
+  const CellBox b{std::max(0, box.x0), std::max(0, box.y0), std::min(kGridSide - 1, box.x1),
+                  std::min(kGridSide - 1, box.y1)};
   if (b.empty() || !b.contains(start.x, start.y)) return Status::kOutOfRange;
   box_ = b;
   start_ = start;

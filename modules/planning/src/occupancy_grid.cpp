@@ -25,7 +25,8 @@ Status OccupancyGrid::configure(const GridParams& params, Point2 home, uint16_t 
   first_angle_rad_ = first_angle_rad;
   angle_step_rad_ = angle_step_rad;
   for (std::size_t i = 0; i < beam_count; ++i) {
-    const double a = static_cast<double>(first_angle_rad) + static_cast<double>(angle_step_rad) * static_cast<double>(i);
+    const double a =
+        static_cast<double>(first_angle_rad) + static_cast<double>(angle_step_rad) * static_cast<double>(i);
     cos_q14_[i] = static_cast<int16_t>(std::lround(std::cos(a) * 16384.0));
     sin_q14_[i] = static_cast<int16_t>(std::lround(std::sin(a) * 16384.0));
   }
@@ -81,7 +82,8 @@ void OccupancyGrid::hit_cell(std::size_t i) {
 
 Status OccupancyGrid::draw(const LaserScan& scan, const Pose2& pose) {
   if (!configured_) return Status::kNotFound;
-  if (scan.beam_count != beam_count_ || std::fabs(scan.first_angle_rad - first_angle_rad_) > 1e-3f * std::fabs(angle_step_rad_) ||
+  if (scan.beam_count != beam_count_ ||
+      std::fabs(scan.first_angle_rad - first_angle_rad_) > 1e-3f * std::fabs(angle_step_rad_) ||
       std::fabs(scan.angle_step_rad - angle_step_rad_) > 1e-6f * std::fabs(angle_step_rad_))
     return Status::kInvalidArgument;
   if (!pose.finite()) return Status::kNotFinite;

@@ -74,7 +74,8 @@ void paper_config(benchmark::State& st, bool multi) {
   }
   const double poses = 21.0 * 21.0 * 35.0;
   st.counters["candidate_poses"] = poses;
-  st.counters["poses_per_s"] = benchmark::Counter(poses * static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
+  st.counters["poses_per_s"] =
+      benchmark::Counter(poses * static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
 }
 
 void BM_PaperMulti(benchmark::State& st) { paper_config(st, true); }

@@ -136,7 +136,8 @@ void CorrelativeSearch::build_runs(int level) {
     // stored every step. Runs start at slot 1; slot 0 takes the sentinel, which matches no
     // cell (see below).
     const auto key = [](const Run& r) {
-      return static_cast<uint32_t>(static_cast<uint16_t>(r.x)) | (static_cast<uint32_t>(static_cast<uint16_t>(r.y)) << 16);
+      return static_cast<uint32_t>(static_cast<uint16_t>(r.x)) |
+             (static_cast<uint32_t>(static_cast<uint16_t>(r.y)) << 16);
     };
     uint32_t prev = key(Run{INT16_MIN, INT16_MIN, 0}), count = 0;
     int m = 0;  // slot of the current run
@@ -202,7 +203,8 @@ int32_t CorrelativeSearch::bound(int level, int tx, int ty) {
 void CorrelativeSearch::child_bounds(int level, int tx, int ty, std::array<int32_t, 4>& out) {
   int32_t s00 = 0, s10 = 0, s01 = 0, s11 = 0;
   const auto add = [&](int32_t x, int32_t y, int32_t count, const uint8_t* cells, int32_t d) {
-    const bool x0 = static_cast<uint32_t>(x) < static_cast<uint32_t>(d), x1 = static_cast<uint32_t>(x + 1) < static_cast<uint32_t>(d);
+    const bool x0 = static_cast<uint32_t>(x) < static_cast<uint32_t>(d),
+               x1 = static_cast<uint32_t>(x + 1) < static_cast<uint32_t>(d);
     if (static_cast<uint32_t>(y) < static_cast<uint32_t>(d)) {
       const uint8_t* row = cells + static_cast<std::ptrdiff_t>(y) * d;
       if (x0) s00 += count * row[x];
@@ -311,7 +313,8 @@ void CorrelativeSearch::accumulate(int x0, int y0, int w) {
     const int uy0 = std::max(0, -by), uy1 = std::min(w, d - by);
     if (ux0 >= ux1 || uy0 >= uy1) continue;
     for (int uy = uy0; uy < uy1; ++uy) {
-      add_row_scalar(acc_.data() + uy * stride + ux0, cells + static_cast<std::size_t>(by + uy) * d + bx + ux0, ux1 - ux0);
+      add_row_scalar(acc_.data() + uy * stride + ux0, cells + static_cast<std::size_t>(by + uy) * d + bx + ux0,
+                     ux1 - ux0);
     }
   }
   const int groups = kRowLanes == 8 ? stride / 8 : 0;
@@ -462,7 +465,8 @@ GridPose CorrelativeSearch::best_outside(int k, int cx, int cy, int radius) {
     return dx * dx + dy * dy <= r2;
   };
   std::size_t top = 0;
-  stack_[top++] = {-half_cells_, -half_cells_, bound(top_level_, -half_cells_, -half_cells_), static_cast<int8_t>(top_level_)};
+  stack_[top++] = {-half_cells_, -half_cells_, bound(top_level_, -half_cells_, -half_cells_),
+                   static_cast<int8_t>(top_level_)};
   while (top > 0) {
     const Node n = stack_[--top];
     ++nodes_;

@@ -22,7 +22,8 @@ CovarianceEstimate CovarianceEstimator::estimate(const uint16_t* slice, int half
   const std::size_t n = static_cast<std::size_t>(w) * w;
   std::copy(slice, slice + n, scratch_.begin());
   const std::size_t p95 = std::min(n - 1, (n * 95) / 100);
-  std::nth_element(scratch_.begin(), scratch_.begin() + static_cast<std::ptrdiff_t>(p95), scratch_.begin() + static_cast<std::ptrdiff_t>(n));
+  std::nth_element(scratch_.begin(), scratch_.begin() + static_cast<std::ptrdiff_t>(p95),
+                   scratch_.begin() + static_cast<std::ptrdiff_t>(n));
   const uint16_t thr = std::max<uint16_t>(scratch_[p95], 1);
   // Second moments of the binary image {score >= 95th percentile}.
   double m = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
@@ -61,7 +62,8 @@ CovarianceEstimate CovarianceEstimator::estimate(const uint16_t* slice, int half
   cxx = l1 * c * c + l2 * sn * sn;
   cyy = l1 * sn * sn + l2 * c * c;
   cxy = (l1 - l2) * c * sn;
-  e.translation_cells << static_cast<float>(cxx), static_cast<float>(cxy), static_cast<float>(cxy), static_cast<float>(cyy);
+  e.translation_cells << static_cast<float>(cxx), static_cast<float>(cxy), static_cast<float>(cxy),
+      static_cast<float>(cyy);
 
   const auto at = [&](int x, int y) { return static_cast<float>(slice[y * w + x]); };
   if (half >= 1) {
@@ -80,7 +82,8 @@ CovarianceEstimate CovarianceEstimator::estimate(const uint16_t* slice, int half
   const double sigma = fwhm / 2.3548;
   e.rotation_steps2 = static_cast<float>(std::max(sigma * sigma, 1.0 / 12));
   if (peak > 0 && peak < count - 1) {
-    e.dk = parabola_peak(static_cast<float>(curve[peak - 1]), static_cast<float>(top), static_cast<float>(curve[peak + 1]));
+    e.dk = parabola_peak(static_cast<float>(curve[peak - 1]), static_cast<float>(top),
+                         static_cast<float>(curve[peak + 1]));
   }
   return e;
 }

@@ -39,7 +39,8 @@ void LikelihoodKernel::configure(float radius_cells) {
     // the kernel radius, evaluated at the middle of the table bin.
     const double d2 = (static_cast<double>(i) + 0.5) * static_cast<double>(int64_t{1} << shift_);
     const double v = kCellMax * (1.0 - std::sqrt(d2) / radius_sub_);
-    table_[static_cast<std::size_t>(i)] = static_cast<uint8_t>(std::clamp(std::lround(v), 0L, static_cast<long>(kCellMax)));
+    table_[static_cast<std::size_t>(i)] =
+        static_cast<uint8_t>(std::clamp(std::lround(v), 0L, static_cast<long>(kCellMax)));
   }
 }
 
@@ -80,11 +81,15 @@ void LikelihoodMap::for_each_covered(const MapSegment& s, F&& f) {
   const int32_t d_maj = b_maj - a_maj, d_min = b_min - a_min;
   const int32_t lo = std::min(a_maj, b_maj), hi = std::max(a_maj, b_maj);
   // Half-width of the strip: r (1 + |slope|) >= r / cos(slope), in sub-cells.
-  const int32_t half = d_maj == 0 ? r : r + static_cast<int32_t>((static_cast<int64_t>(r) * std::abs(d_min) + std::abs(d_maj) - 1) / std::abs(d_maj));
+  const int32_t half =
+      d_maj == 0 ? r
+                 : r + static_cast<int32_t>((static_cast<int64_t>(r) * std::abs(d_min) + std::abs(d_maj) - 1) /
+                                            std::abs(d_maj));
   const int c0 = std::max(0, (lo - r) / kSub - 1), c1 = std::min(dim_ - 1, (hi + r) / kSub + 1);
   for (int c = c0; c <= c1; ++c) {
     const int32_t centre = std::clamp(c * kSub + kSub / 2, lo, hi);
-    const int32_t m = d_maj == 0 ? a_min : a_min + static_cast<int32_t>(static_cast<int64_t>(centre - a_maj) * d_min / d_maj);
+    const int32_t m =
+        d_maj == 0 ? a_min : a_min + static_cast<int32_t>(static_cast<int64_t>(centre - a_maj) * d_min / d_maj);
     const int r0 = std::max(0, (m - half) / kSub - 1), r1 = std::min(dim_ - 1, (m + half) / kSub + 1);
     if (x_major) {
       for (int row = r0; row <= r1; ++row) f(c, row);
@@ -96,7 +101,8 @@ void LikelihoodMap::for_each_covered(const MapSegment& s, F&& f) {
 
 void LikelihoodMap::begin_centred(float x_m, float y_m) {
   const float half = 0.5f * static_cast<float>(dim_) * resolution_m_;
-  begin(std::floor((x_m - half) / resolution_m_) * resolution_m_, std::floor((y_m - half) / resolution_m_) * resolution_m_);
+  begin(std::floor((x_m - half) / resolution_m_) * resolution_m_,
+        std::floor((y_m - half) / resolution_m_) * resolution_m_);
 }
 
 void LikelihoodMap::begin(float origin_x_m, float origin_y_m) {
@@ -110,7 +116,8 @@ void LikelihoodMap::begin(float origin_x_m, float origin_y_m) {
       const int x0 = dirty_x0_ / s, x1 = std::min(d - 1, (dirty_x1_ + s) / s + 1);
       const int y0 = dirty_y0_ / s, y1 = std::min(d - 1, (dirty_y1_ + s) / s + 1);
       uint8_t* lv = pyramid_ + level_offset_[static_cast<std::size_t>(l)];
-      for (int y = y0; y <= y1; ++y) std::memset(lv + static_cast<std::size_t>(y) * d + x0, 0, static_cast<std::size_t>(x1 - x0 + 1));
+      for (int y = y0; y <= y1; ++y)
+        std::memset(lv + static_cast<std::size_t>(y) * d + x0, 0, static_cast<std::size_t>(x1 - x0 + 1));
     }
   }
   dirty_x0_ = dirty_y0_ = 0;

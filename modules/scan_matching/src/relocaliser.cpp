@@ -40,10 +40,13 @@ bool walk_cells(const LikelihoodMap& map, const Pose2& pose, float angle, float 
 Status validate(const RelocaliserParams& p) {
   if (!(p.resolution_m >= 0.01f && p.resolution_m <= 0.2f) || !(p.sigma_m > 0.0f) ||
       !(3.0f * p.sigma_m / p.resolution_m < 64.0f) || !(p.angle_step_rad > 0.0f && p.angle_step_rad <= 0.1f) ||
-      !(p.window_m > 0.0f) || !(p.window_rad >= 0.0f && p.window_rad <= 1.0f) || !(p.min_score >= 0.0f && p.min_score <= 1.0f) ||
-      p.min_points < 3 || !(p.min_gain >= 0.0f) || !(p.exclusion_m > 0.0f) || !(p.exclusion_m < p.window_m) ||
-      !(p.max_second_ratio > 0.0f && p.max_second_ratio <= 1.0f) || !(p.max_see_through >= 0.0f && p.max_see_through <= 1.0f) ||
-      !(p.see_through_margin_m >= 0.0f && p.see_through_margin_m <= 5.0f) || !(p.wall_level > 0.0f && p.wall_level <= 1.0f) ||
+      !(p.window_m > 0.0f) || !(p.window_rad >= 0.0f && p.window_rad <= 1.0f) ||
+      !(p.min_score >= 0.0f && p.min_score <= 1.0f) || p.min_points < 3 || !(p.min_gain >= 0.0f) ||
+      !(p.exclusion_m > 0.0f) || !(p.exclusion_m < p.window_m) ||
+      !(p.max_second_ratio > 0.0f && p.max_second_ratio <= 1.0f) ||
+      !(p.max_see_through >= 0.0f && p.max_see_through <= 1.0f) ||
+      !(p.see_through_margin_m >= 0.0f && p.see_through_margin_m <= 5.0f) ||
+      !(p.wall_level > 0.0f && p.wall_level <= 1.0f) ||
       !(p.max_returns_in_free >= 0.0f && p.max_returns_in_free <= 1.0f))
     return Status::kInvalidArgument;
   if (cells(p.window_m, p.resolution_m) > kMaxWindowCells ||
@@ -90,7 +93,8 @@ Status Relocaliser::add_reference(const ScanPoints& pts, const Pose2& pose, cons
 // exclusion_m from the best, over the best's: how sure the search is of where in the scene it
 // stands.
 float Relocaliser::second_peak_ratio(const GridPose& best) {
-  const GridPose second = search_.best_outside(best.k, best.tx, best.ty, cells(params_.exclusion_m, params_.resolution_m));
+  const GridPose second =
+      search_.best_outside(best.k, best.tx, best.ty, cells(params_.exclusion_m, params_.resolution_m));
   return best.score > 0 ? static_cast<float>(std::max(0, second.score)) / static_cast<float>(best.score) : 1.0f;
 }
 
@@ -175,9 +179,11 @@ Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess, co
   r.outcome = RelocaliseOutcome::kBadInput;
   const int half_cells = cells(params_.window_m, params_.resolution_m);
   const int half_steps = cells(params_.window_rad, params_.angle_step_rad);
-  if (!guess.finite() || std::hypot(guess.x - reference_pose_.x, guess.y - reference_pose_.y) > 0.5f * map_.dim() * map_.resolution_m())
+  if (!guess.finite() ||
+      std::hypot(guess.x - reference_pose_.x, guess.y - reference_pose_.y) > 0.5f * map_.dim() * map_.resolution_m())
     return r;
-  if (search_.setup(pts, guess, map_, half_cells, half_steps, params_.angle_step_rad, 0, matcher_.max_range_m) != Status::kOk)
+  if (search_.setup(pts, guess, map_, half_cells, half_steps, params_.angle_step_rad, 0, matcher_.max_range_m) !=
+      Status::kOk)
     return r;
   const GridPose best = search_.branch_and_bound();
   const int judged = best.score >= 0 ? search_.scored_points(best.k) : 0;
@@ -185,7 +191,8 @@ Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess, co
   r.points = static_cast<uint16_t>(judged);
   r.score = static_cast<float>(std::max(0, best.score)) / denom;
   const int guess_judged = search_.scored_points(0);
-  r.guess_score = static_cast<float>(search_.score(0, 0, 0)) / (static_cast<float>(std::max(1, guess_judged)) * kCellMax);
+  r.guess_score =
+      static_cast<float>(search_.score(0, 0, 0)) / (static_cast<float>(std::max(1, guess_judged)) * kCellMax);
   if (best.score < 0 || judged < params_.min_points || r.score < params_.min_score) {
     r.outcome = RelocaliseOutcome::kNoFit;
     return r;
@@ -199,7 +206,8 @@ Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess, co
     r.outcome = RelocaliseOutcome::kAmbiguous;
     return r;
   }
-  const Pose2 found = search_.pose_of(static_cast<float>(best.k), static_cast<float>(best.tx), static_cast<float>(best.ty));
+  const Pose2 found =
+      search_.pose_of(static_cast<float>(best.k), static_cast<float>(best.tx), static_cast<float>(best.ty));
   r.see_through = see_through_fraction(pts, scan, found);
   if (r.see_through > params_.max_see_through) {
     r.outcome = RelocaliseOutcome::kSeesThrough;

@@ -235,8 +235,11 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   // cells and steps of the window's grid.
   const bool use_box = prior == nullptr && accepted_ >= 2 && params_.cv_box_m > 0 && params_.cv_box_rad >= 0;
   const int box_cells = use_box ? std::clamp(static_cast<int>(ceil_div(params_.cv_box_m, res)), 1, cap_cells) : 0;
-  const int box_steps = use_box ? std::clamp(static_cast<int>(ceil_div(params_.cv_box_rad, params_.angle_step_rad)), 0, kMaxThetaSteps) : 0;
-  const int cvx = static_cast<int>(std::lround((cv.x - pred.x) / res)), cvy = static_cast<int>(std::lround((cv.y - pred.y) / res));
+  const int box_steps =
+      use_box ? std::clamp(static_cast<int>(ceil_div(params_.cv_box_rad, params_.angle_step_rad)), 0, kMaxThetaSteps)
+              : 0;
+  const int cvx = static_cast<int>(std::lround((cv.x - pred.x) / res)),
+            cvy = static_cast<int>(std::lround((cv.y - pred.y) / res));
   const int cvk = static_cast<int>(std::lround(wrap_angle(cv.theta - pred.theta) / params_.angle_step_rad));
   const auto search_around = [&](int hx, int hy, int hk, int cells, int steps) {
     const Pose2 c{pred.x + static_cast<float>(hx) * res, pred.y + static_cast<float>(hy) * res,
@@ -255,10 +258,12 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   int seed_count = 0;
   if (params_.multi_resolution && half_cells > kSeedWindow && (gx != 0 || gy != 0 || gt != 0)) {
     for (const float sign : {-1.0f, 1.0f}) {
-      const int hx = static_cast<int>(std::lround(sign * gx / res)), hy = static_cast<int>(std::lround(sign * gy / res));
+      const int hx = static_cast<int>(std::lround(sign * gx / res)),
+                hy = static_cast<int>(std::lround(sign * gy / res));
       const int hk = static_cast<int>(std::lround(sign * gt / params_.angle_step_rad));
       if (use_box && hx == cvx && hy == cvy && hk == cvk) continue;  // the box search below covers it
-      seeds[static_cast<std::size_t>(seed_count++)] = search_around(hx, hy, hk, kSeedWindow, std::min(half_steps, kSeedWindow));
+      seeds[static_cast<std::size_t>(seed_count++)] =
+          search_around(hx, hy, hk, kSeedWindow, std::min(half_steps, kSeedWindow));
     }
   }
   GridPose in_box;
@@ -371,10 +376,11 @@ ScanMatch ScanMatcher::process(const LaserScan& scan, const PosePrior* prior_in)
   local_.release();
   out.overlap = inside > 0 ? static_cast<float>(fit) / static_cast<float>(inside) : 0.0f;
 
-  const Pose2 pose = params_.subcell_refine
-                         ? search_.pose_of(static_cast<float>(best.k) + ce.dk, static_cast<float>(best.tx) + ce.dx,
-                                           static_cast<float>(best.ty) + ce.dy)
-                         : search_.pose_of(static_cast<float>(best.k), static_cast<float>(best.tx), static_cast<float>(best.ty));
+  const Pose2 pose =
+      params_.subcell_refine
+          ? search_.pose_of(static_cast<float>(best.k) + ce.dk, static_cast<float>(best.tx) + ce.dx,
+                            static_cast<float>(best.ty) + ce.dy)
+          : search_.pose_of(static_cast<float>(best.k), static_cast<float>(best.tx), static_cast<float>(best.ty));
   m.pose = pose;
   m.covariance.setZero();
   m.covariance.topLeftCorner<2, 2>() = ce.translation_cells * (res * res);

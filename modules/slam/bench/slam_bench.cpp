@@ -55,7 +55,8 @@ void run(benchmark::State& state, int beams, float fov, float reach) {
   // Draw the room from a few poses, then match a scan taken between them from a prior 5 cm
   // and a degree off: the search does its full count of candidates every time.
   for (int k = 0; k <= static_cast<int>(params.warmup_scans) + 8; ++k) {
-    const Pose2 at{-1.0f + 0.3f * static_cast<float>(k % 8), 0.2f * static_cast<float>(k % 3), 0.4f * static_cast<float>(k)};
+    const Pose2 at{-1.0f + 0.3f * static_cast<float>(k % 8), 0.2f * static_cast<float>(k % 3),
+                   0.4f * static_cast<float>(k)};
     const auto pts = std::make_unique<scan_matching::ScanPoints>(room_points(at, beams, fov, reach));
     (void)slam->process(*pts, at);
   }

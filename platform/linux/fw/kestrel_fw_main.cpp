@@ -235,7 +235,8 @@ int main(int argc, char** argv) {
   const autonomy::Devices devices{clock, *laser, bridge, &bridge, bridge};
   // The one large allocation, before arming: maps, filter history, explorer trees.
   auto stack = std::make_unique<autonomy::AutonomyStack>(devices, clock);
-  std::fprintf(stderr, "kestrel-fw: autonomy stack: %zu bytes allocated at start-up\n", sizeof(autonomy::AutonomyStack));
+  std::fprintf(stderr, "kestrel-fw: autonomy stack: %zu bytes allocated at start-up\n",
+               sizeof(autonomy::AutonomyStack));
   if (stack->configure(cfg) != Status::kOk) {
     std::fprintf(stderr, "kestrel-fw: configuration rejected: %s\n", stack->configure_error());
     return 2;
@@ -300,7 +301,8 @@ int main(int argc, char** argv) {
                stack->counters().home_fixes, stack->counters().home_fixes_refused);
   // The link's health, for a bench test: damaged frames and bytes lost between frames.
   const platform::HilCounters& link = bridge.counters();
-  std::fprintf(stderr, "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u, bad stamps %u\n",
+  std::fprintf(stderr,
+               "kestrel-fw: link frames %u, bad CRC or length %u, skipped bytes %u, malformed %u, bad stamps %u\n",
                link.frames, link.crc_errors, link.skipped_bytes, link.malformed, link.bad_stamps);
   // The filter's counts: whether it refused input (and why) or drifted on good input.
   // The compact SLAM's counts (zero when it is off), read after level 3's thread has joined.
@@ -315,6 +317,7 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < s.task_count(); ++i)
     std::fprintf(stderr, "  task %-10s runs %8llu  mean %8.1f us  max %8lld us  misses %llu\n", s.spec(i).name,
                  static_cast<unsigned long long>(s.stats(i).runs), s.stats(i).mean_us(),
-                 static_cast<long long>(s.stats(i).max_us), static_cast<unsigned long long>(s.stats(i).deadline_misses()));
+                 static_cast<long long>(s.stats(i).max_us),
+                 static_cast<unsigned long long>(s.stats(i).deadline_misses()));
   return rc;
 }

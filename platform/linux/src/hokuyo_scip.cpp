@@ -60,7 +60,8 @@ void HokuyoScip::convert(TimeUs arrival) {
   scan_.angle_step_rad = g.angle_step_rad;
   scan_.max_range_mm = model_.max_range_mm;
   scan_.beam_count = s.count;
-  for (std::size_t i = 0; i < s.count; ++i) scan_.range_mm[i] = comms::scip_to_range_mm(s.range_mm[i], model_.max_range_mm);
+  for (std::size_t i = 0; i < s.count; ++i)
+    scan_.range_mm[i] = comms::scip_to_range_mm(s.range_mm[i], model_.max_range_mm);
   fresh_ = true;
 }
 

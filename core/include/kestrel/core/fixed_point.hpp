@@ -51,8 +51,12 @@ class Fixed {
   // Rounds to the nearest integer, ties away from zero.
   constexpr int32_t round_to_int() const { return static_cast<int32_t>(fixed_detail::round_shift(raw_, F)); }
 
-  friend constexpr Fixed operator+(Fixed a, Fixed b) { return from_raw(fixed_detail::saturate(int64_t{a.raw_} + b.raw_)); }
-  friend constexpr Fixed operator-(Fixed a, Fixed b) { return from_raw(fixed_detail::saturate(int64_t{a.raw_} - b.raw_)); }
+  friend constexpr Fixed operator+(Fixed a, Fixed b) {
+    return from_raw(fixed_detail::saturate(int64_t{a.raw_} + b.raw_));
+  }
+  friend constexpr Fixed operator-(Fixed a, Fixed b) {
+    return from_raw(fixed_detail::saturate(int64_t{a.raw_} - b.raw_));
+  }
   friend constexpr Fixed operator*(Fixed a, Fixed b) {
     return from_raw(fixed_detail::saturate(fixed_detail::round_shift(int64_t{a.raw_} * b.raw_, F)));
   }

@@ -11,8 +11,9 @@
 // applies the correction it hands back at the next scan; neither side ever waits.
 //
 // Memory: everything is inside this object (about 14.9 MiB: the scan matcher's two maps, the
-// SLAM's, the frontier explorer's grid and the home re-localisation's map), which the firmware allocates once at start-up
-// (static storage or one allocation before arming). After start() nothing allocates.
+// SLAM's, the frontier explorer's grid and the home re-localisation's map), which the firmware
+// allocates once at start-up (static storage or one allocation before arming). After start()
+// nothing allocates.
 #include <atomic>
 #include <cstdint>
 

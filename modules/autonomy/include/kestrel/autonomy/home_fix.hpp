@@ -13,10 +13,10 @@
 // reference_turn_rad, for reference_window_s, up to kMaxReferenceScans: the mission's turn on
 // the spot after take-off, survey_rad, gives five of them all round home; the frontier
 // explorer's flights, which do not turn (frontier_survey_rad), take them along their first
-// path) and, flying home
-// within radius_m of home (and holding and landing there), one scan every period_s to search; take() hands back a confirmed
-// fix for NavFilter::apply_correction. Level 3 (background_step()) draws and searches
-// (scan_matching/relocaliser.hpp). One slot each way; neither side waits.
+// path) and, flying home within radius_m of home (and holding and landing there), one scan
+// every period_s to search; take() hands back a confirmed fix for NavFilter::apply_correction.
+// Level 3 (background_step()) draws and searches (scan_matching/relocaliser.hpp). One slot each
+// way; neither side waits.
 //
 // A fix is handed back only when two searches in a row agree within agree_m and agree_rad (the
 // first's correction, applied to the second's guess, puts the vehicle where the second's fix

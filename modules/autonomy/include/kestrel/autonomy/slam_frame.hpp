@@ -16,7 +16,9 @@ class SlamFrame {
   // The filter's frame correction went from `before` to `after` (NavFilter::frame_correction()
   // around a correction the SLAM did not make): the filter's trajectory moved by
   // after * before^-1 in the world, the SLAM's did not.
-  void filter_moved(const Pose2& before, const Pose2& after) { frame_ = after.compose(before.inverse()).compose(frame_); }
+  void filter_moved(const Pose2& before, const Pose2& after) {
+    frame_ = after.compose(before.inverse()).compose(frame_);
+  }
 
  private:
   Pose2 frame_;

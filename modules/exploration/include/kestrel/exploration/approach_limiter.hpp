@@ -13,8 +13,8 @@
 // command is projected onto the most broken of these half-planes, again and again (a wall
 // needs one cut, a corner two or three); if bounds are still broken after kMaxCuts the command
 // is scaled down until none is (zero, the last resort, breaks none while every return is
-// beyond stop_distance). Each cut is a pass over the returns within reach. Integer only, in mm/s and Q14 directions, for the
-// FPU-less Verdex.
+// beyond stop_distance). Each cut is a pass over the returns within reach. Integer only, in
+// mm/s and Q14 directions, for the FPU-less Verdex.
 //
 // Behind the laser (the URG-04LX's 120 degrees, the UTM-30LX's 90) nothing is seen: the
 // yaw-rate limit turns the heading towards a new waypoint over seconds while equation 5 pulls

@@ -77,8 +77,9 @@
 // every ray, 2.8 k units, or one search along the retrace's trail, up to 4.3 k), on a copy of
 // the arrival's pose and scan. Meanwhile busy() is true, waypoint() stays where it was (the
 // waypoint just reached; the vehicle's position when exploration starts or restarts), the poses
-// and scans given are not used and the time limit does not run. The result, once done, is the one a single call would give (tested); the new
-// waypoint's time is that of the call that finishes it.
+// and scans given are not used and the time limit does not run. The result, once done, is the
+// one a single call would give (tested); the new waypoint's time is that of the call that
+// finishes it.
 #include <array>
 #include <bitset>
 #include <cstdint>

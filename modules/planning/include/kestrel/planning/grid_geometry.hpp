@@ -20,7 +20,9 @@ struct Cell {
 };
 
 inline bool on_grid(int x, int y) { return x >= 0 && y >= 0 && x < kGridSide && y < kGridSide; }
-inline std::size_t cell_index(int x, int y) { return static_cast<std::size_t>(y) * kGridSide + static_cast<std::size_t>(x); }
+inline std::size_t cell_index(int x, int y) {
+  return static_cast<std::size_t>(y) * kGridSide + static_cast<std::size_t>(x);
+}
 
 // A rectangle of cells, corners included; empty while x0 > x1.
 struct CellBox {
