@@ -266,7 +266,8 @@ int main(int argc, char** argv) {
   g.height = capped_cells(y1 - y0 + 2, g.resolution_m);
   std::vector<int> hits(static_cast<std::size_t>(g.width) * g.height, 0);
   for (const Point2d& q : points) {
-    const int cx = static_cast<int>((q.x - g.origin_x_m) / g.resolution_m), cy = static_cast<int>((q.y - g.origin_y_m) / g.resolution_m);
+    const int cx = static_cast<int>((q.x - g.origin_x_m) / g.resolution_m),
+              cy = static_cast<int>((q.y - g.origin_y_m) / g.resolution_m);
     if (cx >= 0 && cy >= 0 && cx < g.width && cy < g.height) ++hits[static_cast<std::size_t>(cy) * g.width + cx];
   }
   g.cells.assign(hits.size(), output::kPgmUnknown);

@@ -69,7 +69,8 @@ Status write_metrics(const std::string& path, const SimOptions& opt, Simulation&
   j.end_object();
   // Where the flight ended against where it took off, by the truth: the mission's
   // returned_home is by the estimate, which may have drifted.
-  j.number("final_from_start_m", std::hypot(t.position_m.x() - sim.world().start.x, t.position_m.y() - sim.world().start.y));
+  j.number("final_from_start_m",
+           std::hypot(t.position_m.x() - sim.world().start.x, t.position_m.y() - sim.world().start.y));
   MissionMetrics extra;
   mission.metrics(extra);
   for (const auto& [k, v] : extra) j.number(k.c_str(), v);

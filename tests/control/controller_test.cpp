@@ -231,7 +231,8 @@ TEST(Controller, StepDoesNotAllocate) {
   const Controller c;
   ModelSim sim;
   alloc_guard::Scope guard;
-  for (int i = 0; i < 100; ++i) sim.step(c.step(sim.nav(TimeUs::from_us(i * 25000)), hold({1, 1, 1}, 1)).command, 0.025f);
+  for (int i = 0; i < 100; ++i)
+    sim.step(c.step(sim.nav(TimeUs::from_us(i * 25000)), hold({1, 1, 1}, 1)).command, 0.025f);
   EXPECT_EQ(guard.allocations(), 0u);
 }
 

@@ -66,8 +66,10 @@ TEST(StraightPathClear, NotClearWhereTheScanSaysNothing) {
   // The corridor's edge directions must be in the field of view too: a target just inside
   // the fan's edge is not enough.
   const float edge = static_cast<float>(LaserModel::urg04lx().fov_rad / 2);
-  EXPECT_FALSE(straight_path_clear(far, {0, 0, 0}, {2.0f * std::cos(edge - 0.05f), 2.0f * std::sin(edge - 0.05f)}, kClearance));
-  EXPECT_TRUE(straight_path_clear(far, {0, 0, 0}, {2.0f * std::cos(edge - 0.3f), 2.0f * std::sin(edge - 0.3f)}, kClearance));
+  EXPECT_FALSE(
+      straight_path_clear(far, {0, 0, 0}, {2.0f * std::cos(edge - 0.05f), 2.0f * std::sin(edge - 0.05f)}, kClearance));
+  EXPECT_TRUE(
+      straight_path_clear(far, {0, 0, 0}, {2.0f * std::cos(edge - 0.3f), 2.0f * std::sin(edge - 0.3f)}, kClearance));
   // A scan of nothing but dropouts vouches for nothing; bad inputs are never clear.
   LaserScan codes = urg;
   for (uint16_t i = 0; i < codes.beam_count; ++i) codes.range_mm[i] = range_code::kDropout;
@@ -143,7 +145,9 @@ TEST(StraightPathClear, TheLastBeamsOfAWideScanPointWhereTheyShould) {
   const double cx = 6.0 * std::cos(a), cy = 6.0 * std::sin(a);
   w.add(cx - 0.3 * std::sin(a), cy + 0.3 * std::cos(a), cx + 0.3 * std::sin(a), cy - 0.3 * std::cos(a));
   const LaserScan scan = w.scan(LaserModel::utm30lx(), 0, 0, 0);
-  const auto at_range = [a](double r) { return Point2{static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a))}; };
+  const auto at_range = [a](double r) {
+    return Point2{static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a))};
+  };
   EXPECT_FALSE(straight_path_clear(scan, {0, 0, 0}, at_range(5.9), 0.2f));  // 0.1 m short of the wall
   EXPECT_TRUE(straight_path_clear(scan, {0, 0, 0}, at_range(5.5), 0.2f));   // 0.5 m short
 }

@@ -23,7 +23,8 @@ TEST(DeviceClock, TheQuickestArrivalSetsTheOffset) {
   EXPECT_TRUE(c.known());
   // The offset is the 1 ms arrival's (plus at most the drift allowance's leak over 20 ms).
   EXPECT_NEAR(static_cast<double>(c.offset_us()), static_cast<double>(board0.us + 1000), 5.0);
-  EXPECT_NEAR(static_cast<double>(c.to_board(TimeUs::from_us(20'000)).us), static_cast<double>(board0.us + 21'000), 5.0);
+  EXPECT_NEAR(static_cast<double>(c.to_board(TimeUs::from_us(20'000)).us), static_cast<double>(board0.us + 21'000),
+              5.0);
 }
 
 // A device crystal 50 ppm slow against the board: over a 30-minute flight of 40 Hz frames with

@@ -24,7 +24,8 @@ TEST(Scheduler, RunsTasksAtTheirRatesOnASimulatedClock) {
   Scheduler s(sim, exec);
   FakeWork imu{&exec, Duration::from_us(100)}, laser{&exec, Duration::from_us(2000)};
   ASSERT_EQ(s.add({"imu", Duration::from_ms(5), {}, &FakeWork::run, &imu}, TimeUs{}), Status::kOk);
-  ASSERT_EQ(s.add({"laser", Duration::from_ms(25), Duration::from_ms(12), &FakeWork::run, &laser}, TimeUs{}), Status::kOk);
+  ASSERT_EQ(s.add({"laser", Duration::from_ms(25), Duration::from_ms(12), &FakeWork::run, &laser}, TimeUs{}),
+            Status::kOk);
   while (sim.now() < TimeUs::from_s(1.0)) {
     s.poll();
     sim.set(s.next_release());

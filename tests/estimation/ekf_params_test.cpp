@@ -27,7 +27,8 @@ TEST(EkfParams, WriteThenParseRoundTrips) {
   EXPECT_NE(std::strstr(buf, "(m/s^2)^2/Hz"), nullptr);  // units in the comments
   EkfParams q;
   params::ParamError err;
-  ASSERT_EQ(params::parse_params(std::string_view(buf, n.value()), ekf_param_fields(q), err), Status::kOk) << err.message;
+  ASSERT_EQ(params::parse_params(std::string_view(buf, n.value()), ekf_param_fields(q), err), Status::kOk)
+      << err.message;
   EXPECT_EQ(q.accel_noise_xy, p.accel_noise_xy);
   EXPECT_EQ(q.pose_cov_scale, p.pose_cov_scale);
   EXPECT_EQ(q.gyro_bias_walk, p.gyro_bias_walk);

@@ -257,7 +257,8 @@ TEST(NavFilter, BadInputsHaveDefinedBehaviour) {
 // such input is refused (kOutOfRange, counted; the attitude ignored) and the state is exactly
 // what it was, on a property sweep of magnitudes drawn with a fixed seed.
 TEST(NavFilter, HugeFiniteInputsAreRefusedAndLeaveTheStateUnchanged) {
-  const float big[] = {1e30f, -1e30f, std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), 2e4f, -1e5f};
+  const float big[] = {1e30f, -1e30f, std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                       2e4f,  -1e5f};
   std::mt19937 rng(42);
   auto pick = [&] { return big[std::uniform_int_distribution<std::size_t>(0, std::size(big) - 1)(rng)]; };
   auto filter = std::make_unique<NavFilter>();

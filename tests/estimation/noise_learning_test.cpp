@@ -46,10 +46,11 @@ TEST(NoiseLearning, LearntParametersReduceVelocityErrorOnHeldOutFlight) {
   const VelocityError e_learnt = evaluate_velocity_error(*filter, r.params, test_run);
   EXPECT_LT(e_learnt.rms_mps, 0.8 * e_hand.rms_mps) << "hand " << e_hand.rms_mps << " learnt " << e_learnt.rms_mps;
   EXPECT_LT(e_learnt.mean_mps, e_hand.mean_mps);
-  std::printf("velocity error, held-out flight: hand mean %.4f std %.4f rms %.4f m/s; learnt mean %.4f std %.4f rms %.4f m/s "
-              "(%d evaluations)\n",
-              e_hand.mean_mps, e_hand.std_mps, e_hand.rms_mps, e_learnt.mean_mps, e_learnt.std_mps, e_learnt.rms_mps,
-              r.evaluations);
+  std::printf(
+      "velocity error, held-out flight: hand mean %.4f std %.4f rms %.4f m/s; learnt mean %.4f std %.4f rms %.4f m/s "
+      "(%d evaluations)\n",
+      e_hand.mean_mps, e_hand.std_mps, e_hand.rms_mps, e_learnt.mean_mps, e_learnt.std_mps, e_learnt.rms_mps,
+      r.evaluations);
 }
 
 TEST(NoiseLearning, EvaluationIsDeterministicAndRejectsInvalidParameters) {

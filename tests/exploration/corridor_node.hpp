@@ -32,8 +32,8 @@ struct CorridorNode {
 inline Status corridor_node(float x_from, float x_to, float x, CorridorNode& out) {
   out.pose = {x, 0, kFacingNorth};
   const SrtParams params;
-  const Status built =
-      out.sectors->build(corridor(x_from, x_to).scan(::kestrel::test::LaserModel::urg04lx(), x, 0, kFacingNorth), params);
+  const Status built = out.sectors->build(
+      corridor(x_from, x_to).scan(::kestrel::test::LaserModel::urg04lx(), x, 0, kFacingNorth), params);
   if (built != Status::kOk) return built;
   return out.tree->add_node(out.pose, *out.sectors, kNoNode, out.id);
 }

@@ -26,8 +26,9 @@ struct Fixture {
   CellBox box{90, 90, 210, 210};
   Fixture() {
     const test::LaserModel urg = test::LaserModel::urg04lx();
-    EXPECT_EQ(grid->configure({}, {0, 0}, urg.beams, static_cast<float>(urg.first_angle()), static_cast<float>(urg.step())),
-              Status::kOk);
+    EXPECT_EQ(
+        grid->configure({}, {0, 0}, urg.beams, static_cast<float>(urg.first_angle()), static_cast<float>(urg.step())),
+        Status::kOk);
   }
   void paint(int x0, int y0, int x1, int y1, uint8_t v) {
     for (int y = y0; y <= y1; ++y)
@@ -105,7 +106,8 @@ TEST(FrontierClusters, BeyondCapacityTheCheapestAreKept) {
   f.paint(40, 40, 470, 470, kFree);
   std::size_t holes = 0;
   for (int y = 50; y < 460; y += 6)
-    for (int x = 50; x < 460 && holes < kMaxFrontierClusters + 40; x += 6, ++holes) f.grid->set({static_cast<int16_t>(x), static_cast<int16_t>(y)}, 0);
+    for (int x = 50; x < 460 && holes < kMaxFrontierClusters + 40; x += 6, ++holes)
+      f.grid->set({static_cast<int16_t>(x), static_cast<int16_t>(y)}, 0);
   f.paint(40, 40, 470, 40, kWall);
   f.paint(40, 470, 470, 470, kWall);
   f.paint(40, 40, 40, 470, kWall);

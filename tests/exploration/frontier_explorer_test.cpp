@@ -86,7 +86,8 @@ TEST(FrontierExplorer, AClosedRoomSeenAllRoundIsExplored) {
   Rig r;
   r.world.add_box(0, 0, 3, 3);
   ASSERT_EQ(r.configure(), Status::kOk);
-  for (int k = 0; k < 200 && !r.ex->finished(); ++k) ASSERT_EQ(r.step(1.5f, 1.5f, 0.05f * static_cast<float>(k)), Status::kOk);
+  for (int k = 0; k < 200 && !r.ex->finished(); ++k)
+    ASSERT_EQ(r.step(1.5f, 1.5f, 0.05f * static_cast<float>(k)), Status::kOk);
   EXPECT_TRUE(r.ex->finished());
   EXPECT_FALSE(r.ex->plan_in_flight().has_goal);
   EXPECT_TRUE(r.ex->frontiers().empty());
@@ -218,7 +219,8 @@ TEST(FrontierExplorer, ResetForgetsTheMapAtLevel3sNextStep) {
   Rig r;
   r.world.add_box(0, 0, 3, 3);
   ASSERT_EQ(r.configure(), Status::kOk);
-  for (int k = 0; k < 200 && !r.ex->finished(); ++k) ASSERT_EQ(r.step(1.5f, 1.5f, 0.05f * static_cast<float>(k)), Status::kOk);
+  for (int k = 0; k < 200 && !r.ex->finished(); ++k)
+    ASSERT_EQ(r.step(1.5f, 1.5f, 0.05f * static_cast<float>(k)), Status::kOk);
   ASSERT_TRUE(r.ex->finished());
   ASSERT_GT(r.ex->grid().scans_drawn(), 0u);
   r.ex->reset();

@@ -206,7 +206,8 @@ TEST(SrtStarPlannerRetraceFrontier, EachScanMarksOneSliceAndEverySliceInTurn) {
   EXPECT_GT(seen_one, 0);
   EXPECT_GT(seen_all, seen_one);
   EXPECT_EQ(count_cells(twice->visited(), &VisitedGrid::seen_cell), seen_all);
-  EXPECT_EQ(count_cells(twice->visited(), &VisitedGrid::wall_cell), count_cells(all->visited(), &VisitedGrid::wall_cell));
+  EXPECT_EQ(count_cells(twice->visited(), &VisitedGrid::wall_cell),
+            count_cells(all->visited(), &VisitedGrid::wall_cell));
   for (int iy = 0; iy < VisitedGrid::kSide; ++iy) {
     for (int ix = 0; ix < VisitedGrid::kSide; ++ix) {
       EXPECT_EQ(all->visited().seen_cell(ix, iy), sliced->visited().seen_cell(ix, iy));

@@ -87,7 +87,8 @@ constexpr uint32_t kOneShot = 0;
 constexpr uint32_t kVerdexSlices = SrtParams{}.arrival_work_per_cycle;
 
 RetraceFlight fly(RetraceMode mode, int retrace_legs = 300, uint32_t work_per_cycle = kOneShot,
-                  Arrival arrival = Arrival::kOnTheWaypoint, bool guarded = false, Outward shape = Outward::kLawnMower) {
+                  Arrival arrival = Arrival::kOnTheWaypoint, bool guarded = false,
+                  Outward shape = Outward::kLawnMower) {
   RetraceFlight r;
   SrtParams srt;
   srt.arrival_work_per_cycle = work_per_cycle;
@@ -172,10 +173,12 @@ TEST(SrtStarPlannerRetrace, ARunOutWithNothingUnflownNearFliesBackToWhereMoreIsS
     for (int k = 1; k < 10; ++k) {
       const float f = 0.1f * static_cast<float>(k);
       const Point2 q{before.x + f * (w.x - before.x), before.y + f * (w.y - before.y)};
-      EXPECT_LT(off_the_path(q), 0.35f) << "the leg to " << w.x << ", " << w.y << " leaves the path at " << q.x << ", " << q.y;
+      EXPECT_LT(off_the_path(q), 0.35f) << "the leg to " << w.x << ", " << w.y << " leaves the path at " << q.x << ", "
+                                        << q.y;
     }
     EXPECT_FALSE(w.x > 19.5f && w.x < 22.5f && w.y > 1.5f) << "the loop again at " << w.x << ", " << w.y;
-    EXPECT_LT(std::hypot(w.x - before.x, w.y - before.y), SrtStarPlanner::kRetraceStepM + 2.0f * FlownHistory::kSpacingM);
+    EXPECT_LT(std::hypot(w.x - before.x, w.y - before.y),
+              SrtStarPlanner::kRetraceStepM + 2.0f * FlownHistory::kSpacingM);
     before = w;
   }
   // It ended beside the unflown rooms, on the first leg of the flight, where the fresh trees
@@ -208,8 +211,8 @@ TEST(SrtStarPlannerRetrace, TurningEarlyForTheNextLegCutsNoCornerByMoreThanTheDe
                      r.arrivals[k].y + f * (r.waypoints[k + 1].y - r.arrivals[k].y)};
       float nearest = 1e9f;
       for (const Point2& p : out) nearest = std::min(nearest, distance(p, q));
-      EXPECT_LT(nearest, 0.35f) << "the turn at " << r.waypoints[k].x << ", " << r.waypoints[k].y << " leaves the path at "
-                                << q.x << ", " << q.y;
+      EXPECT_LT(nearest, 0.35f) << "the turn at " << r.waypoints[k].x << ", " << r.waypoints[k].y
+                                << " leaves the path at " << q.x << ", " << q.y;
     }
   }
   // On the straight stretches the turn comes well before the waypoint: the flight goes on.

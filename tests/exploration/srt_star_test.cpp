@@ -754,8 +754,8 @@ TEST(SrtStarPlannerSliced, EachCallStaysWithinItsBudgetAndTheTimeLimitWaits) {
   ASSERT_EQ(planner->configure({}, g), Status::kOk);
   const uint32_t budget = SrtParams{}.arrival_work_per_cycle;
   // A call may finish the item it is on: at most one beam's erosion over every ray.
-  const uint32_t overrun =
-      work::kErodeBeam + (work::kErodeRay + work::kErodeSide + work::kErodeRoot) * kMaxSectors * SectorScan::kRaysPerSector;
+  const uint32_t overrun = work::kErodeBeam + (work::kErodeRay + work::kErodeSide + work::kErodeRoot) * kMaxSectors *
+                                                  SectorScan::kRaysPerSector;
   SegmentWorld room;
   room.add_box(-1.5, -1.2, 4.0, 1.2);
   room.add(1.0, 1.2, 1.0, 0.9);  // a jamb near the vehicle: returns within the clearance's reach

@@ -192,15 +192,17 @@ std::unique_ptr<SrtStarPlanner> restarted_at_the_east_end(SteerUnflown steering,
   bool fresh = false;
   EXPECT_EQ(planner->update({0, 0, kNorth}, corridor.scan(urg, 0, 0, kNorth), TimeUs{}, fresh), Status::kOk);
   const Pose2 corners[] = {{0, 7, 0}, {0, -7, 0}};
-  for (const Pose2& p : corners) EXPECT_EQ(planner->update(p, corridor.scan(urg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
+  for (const Pose2& p : corners)
+    EXPECT_EQ(planner->update(p, corridor.scan(urg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
   for (float x = 0.0f; x <= 12.0f; x += 0.5f)
     EXPECT_EQ(planner->update({x, 0.8f, 0}, corridor.scan(urg, 0, 0, 0), TimeUs{}, fresh), Status::kOk);
   EXPECT_EQ(planner->restarts(), 0u);
   if (steering == SteerUnflown::kAfterRestart) {
     EXPECT_EQ(planner->steered_draws(), 0u);  // the first tree draws as paper 002 does
   }
-  EXPECT_EQ(planner->update(kEastEnd, corridor.scan(urg, kEastEnd.x, kEastEnd.y, kEastEnd.theta), TimeUs{31000000}, fresh),
-            Status::kOk);
+  EXPECT_EQ(
+      planner->update(kEastEnd, corridor.scan(urg, kEastEnd.x, kEastEnd.y, kEastEnd.theta), TimeUs{31000000}, fresh),
+      Status::kOk);
   EXPECT_EQ(planner->restarts(), 1u);
   EXPECT_EQ(planner->mode(), PlannerMode::kForward);
   return planner;

@@ -88,7 +88,8 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   // The flight height is every flying mission's; the explorer's knobs are explore's only.
   FlightOptions h;
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}}), h), "");
-  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}, {"approach", "on"}}), h), "");
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}, {"approach", "on"}}), h),
+            "");
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"speed_limit_mps", "0.8"}}), h), "");
 }
 
@@ -119,25 +120,33 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   FlightOptions mem;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "on"}}}, mem), "");
   EXPECT_TRUE(mem.stack.explorer.srt.prefer_unvisited);
-  EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "yes"}}}, mem), "");
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_memory", "yes"}}}, mem),
+            "");
   // A run-out retracing the path flown.
   FlightOptions retrace;
   EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kGuarded);  // the default
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "on"}}}, retrace), "");
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "on"}}}, retrace),
+            "");
   EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kAlways);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "guarded"}}}, retrace), "");
+  ASSERT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "guarded"}}}, retrace),
+      "");
   EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kGuarded);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "off"}}}, retrace), "");
+  ASSERT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "off"}}}, retrace), "");
   EXPECT_EQ(retrace.stack.explorer.srt.retrace, exploration::RetraceMode::kOff);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace", "1"}}}, retrace),
             "srt_retrace: expected off, guarded or on, got '1'");
   // The flight home's shortcut where the scan shows the way clear.
   FlightOptions home;
   EXPECT_TRUE(home.stack.mission.return_shortcut);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"return_shortcut", "off"}}}, home), "");
+  ASSERT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"return_shortcut", "off"}}}, home),
+      "");
   EXPECT_FALSE(home.stack.mission.return_shortcut);
-  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"return_shortcut", "no"}}}, home),
-            "return_shortcut: expected on or off, got 'no'");
+  EXPECT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"return_shortcut", "no"}}}, home),
+      "return_shortcut: expected on or off, got 'no'");
   // Home re-localisation, on by default.
   FlightOptions fix;
   EXPECT_TRUE(fix.stack.home_fix.enabled);
@@ -145,18 +154,22 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   EXPECT_FALSE(fix.stack.home_fix.enabled);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"home_fix", "1"}}}, fix),
             "home_fix: expected on or off, got '1'");
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "3"}}}, fix), "");
+  ASSERT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "3"}}}, fix),
+      "");
   EXPECT_EQ(fix.stack.home_fix.survey_rad, 3.0f);
   EXPECT_EQ(fix.stack.home_fix.frontier_survey_rad, 3.0f);
-  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "-1"}}}, fix),
-            "takeoff_survey_rad: '-1' is not an angle in [0, 12.5] rad");
-  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "nan"}}}, fix),
-            "takeoff_survey_rad: 'nan' is not an angle in [0, 12.5] rad");
+  EXPECT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "-1"}}}, fix),
+      "takeoff_survey_rad: '-1' is not an angle in [0, 12.5] rad");
+  EXPECT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"takeoff_survey_rad", "nan"}}}, fix),
+      "takeoff_survey_rad: 'nan' is not an angle in [0, 12.5] rad");
   // What the retrace counts, and what ends it.
   FlightOptions target;
   EXPECT_EQ(target.stack.explorer.srt.retrace_target, exploration::RetraceTarget::kUnflown);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace_target", "frontier"}}},
-                                 target),
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore,
+                                 sim::MissionOptions{{{"srt_retrace_target", "frontier"}}}, target),
             "");
   EXPECT_EQ(target.stack.explorer.srt.retrace_target, exploration::RetraceTarget::kFrontier);
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_retrace_target", "seen"}}},
@@ -165,25 +178,30 @@ TEST(FlightOptions, ExplorerDistancesReachTheirParameters) {
   // Frontiers kept beside walls.
   FlightOptions rescue;
   EXPECT_FALSE(rescue.stack.explorer.srt.rescue_frontiers);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "on"}}}, rescue), "");
+  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "on"}}}, rescue),
+            "");
   EXPECT_TRUE(rescue.stack.explorer.srt.rescue_frontiers);
-  EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "maybe"}}}, rescue),
-            "srt_rescue: expected on or off, got 'maybe'");
+  EXPECT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_rescue", "maybe"}}}, rescue),
+      "srt_rescue: expected on or off, got 'maybe'");
   // Discontinuity frontiers from the beams' jumps (default) or, off, from the sectors' radii
   // alone as paper 002 has it.
   FlightOptions jumps;
   EXPECT_TRUE(jumps.stack.explorer.srt.discontinuity_needs_beam_jump);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_beam_jumps", "off"}}}, jumps),
-            "");
+  ASSERT_EQ(
+      parse_flight_options(mission::MissionKind::kExplore, sim::MissionOptions{{{"srt_beam_jumps", "off"}}}, jumps),
+      "");
   EXPECT_FALSE(jumps.stack.explorer.srt.discontinuity_needs_beam_jump);
   // The scan matcher's key scan once per interval along a corridor: off by default, any mission.
   FlightOptions corridor;
   EXPECT_EQ(corridor.stack.matcher.degenerate_key_interval_s, 0.0f);
-  ASSERT_EQ(parse_flight_options(mission::MissionKind::kHover, sim::MissionOptions{{{"corridor_keys_s", "1"}}}, corridor),
-            "");
+  ASSERT_EQ(
+      parse_flight_options(mission::MissionKind::kHover, sim::MissionOptions{{{"corridor_keys_s", "1"}}}, corridor),
+      "");
   EXPECT_EQ(corridor.stack.matcher.degenerate_key_interval_s, 1.0f);
-  EXPECT_EQ(parse_flight_options(mission::MissionKind::kHover, sim::MissionOptions{{{"corridor_keys_s", "-1"}}}, corridor),
-            "corridor_keys_s: '-1' is not a time in [0, 60] s");
+  EXPECT_EQ(
+      parse_flight_options(mission::MissionKind::kHover, sim::MissionOptions{{{"corridor_keys_s", "-1"}}}, corridor),
+      "corridor_keys_s: '-1' is not a time in [0, 60] s");
   // Which draws are steered: after a restart by default, any of the four by name.
   FlightOptions steer;
   EXPECT_EQ(steer.stack.explorer.srt.steer, exploration::SteerUnflown::kAfterRestart);
@@ -231,7 +249,8 @@ TEST(FlightOptions, TheCompactSlamFollowsTheLaserUnlessAsked) {
   EXPECT_EQ(file.slam_on, std::optional<bool>(true));
   EXPECT_EQ(file.stack.slam.iterations, 50.0f);
   EXPECT_EQ(file.stack.slam.min_gain_level, 9.0f);
-  const std::string bad_path = test::write_temp_file("flight_options_test_bad.slam", "min_points = 900\nmax_points = 100\n");
+  const std::string bad_path =
+      test::write_temp_file("flight_options_test_bad.slam", "min_points = 900\nmax_points = 100\n");
   FlightOptions bad;
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", bad_path.c_str()}}), bad),
             bad_path + ":0: inconsistent SLAM parameters: need min_points <= max_points");

@@ -14,7 +14,8 @@ namespace {
 TEST(GridMapImage, CropsToTheDrawnCellsAndKeepsTheWorldsFrame) {
   const test::LaserModel urg = test::LaserModel::urg04lx();
   auto grid = std::make_unique<planning::OccupancyGrid>();
-  ASSERT_EQ(grid->configure({}, {10.0f, 20.0f}, urg.beams, static_cast<float>(urg.first_angle()), static_cast<float>(urg.step())),
+  ASSERT_EQ(grid->configure({}, {10.0f, 20.0f}, urg.beams, static_cast<float>(urg.first_angle()),
+                            static_cast<float>(urg.step())),
             Status::kOk);
   EXPECT_EQ(grid_map_image(*grid).width, 0);  // nothing drawn yet
   test::SegmentWorld w;

@@ -39,7 +39,8 @@ TEST(TrailClosedLoop, TheSlamsCorrectionsMoveTheBreadcrumbsRecordedSinceByTheFil
   const TimeUs stop = s.now() + Duration::from_s(150);
   while (s.now() < stop && m.tick(s) == sim::MissionState::kRunning) {
     const mission::Phase phase = m.stack().mission().phase();
-    ASSERT_TRUE(phase == mission::Phase::kIdle || phase == mission::Phase::kTakeoff || phase == mission::Phase::kExplore)
+    ASSERT_TRUE(phase == mission::Phase::kIdle || phase == mission::Phase::kTakeoff ||
+                phase == mission::Phase::kExplore)
         << "at " << s.now().seconds() << " s";
     const Pose2 now_frame = m.stack().filter().frame_correction();
     const bool corrected = !same(now_frame, frame);

@@ -79,7 +79,8 @@ void round_trip(const char* name) {
       EXPECT_EQ(r.angle_step_rad, w.angle_step_rad);
       EXPECT_EQ(r.max_range_mm, w.max_range_mm);
       ASSERT_EQ(r.beam_count, w.beam_count);
-      for (std::size_t i = 0; i < w.beam_count; ++i) ASSERT_EQ(r.range_mm[i], w.range_mm[i]) << "scan " << si << " beam " << i;
+      for (std::size_t i = 0; i < w.beam_count; ++i)
+        ASSERT_EQ(r.range_mm[i], w.range_mm[i]) << "scan " << si << " beam " << i;
       ASSERT_TRUE(rec.has_pose);
       EXPECT_NEAR(rec.pose.x, poses[si].x, 1e-6);
       EXPECT_NEAR(rec.pose.y, poses[si].y, 1e-6);

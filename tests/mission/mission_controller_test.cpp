@@ -465,8 +465,9 @@ JambFlight fly_home_beside_a_jamb(float realign_s) {
     if (held_off(r.v.nav.position_m)) {
       const Eigen::Vector2f at = before.head<2>() + drift;
       constexpr double kH = 1e-3;
-      Eigen::Vector2f away(static_cast<float>(world.clearance(at.x() + kH, at.y()) - world.clearance(at.x() - kH, at.y())),
-                           static_cast<float>(world.clearance(at.x(), at.y() + kH) - world.clearance(at.x(), at.y() - kH)));
+      Eigen::Vector2f away(
+          static_cast<float>(world.clearance(at.x() + kH, at.y()) - world.clearance(at.x() - kH, at.y())),
+          static_cast<float>(world.clearance(at.x(), at.y() + kH) - world.clearance(at.x(), at.y() - kH)));
       away.normalize();  // never zero here (held 0.4 m off, 1 mm steps); Eigen leaves a zero as it is
       Eigen::Vector3f step = r.v.nav.position_m - before;
       const float towards = step.head<2>().dot(away);

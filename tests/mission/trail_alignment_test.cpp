@@ -14,9 +14,10 @@ namespace {
 using test::LaserModel;
 using test::SegmentWorld;
 
-// gt-building's corridor (test::corridor_with_a_door). The vehicle is held 0.45 m off the corridor's north wall, west of the door: the trail
-// it follows was drawn where the estimate stood 0.8 m further east than now, so it runs north
-// through the wall 0.2 m beside the door's jamb (gt-building seed 59: 0.12 m), not through it.
+// gt-building's corridor (test::corridor_with_a_door). The vehicle is held 0.45 m off the
+// corridor's north wall, west of the door: the trail it follows was drawn where the estimate
+// stood 0.8 m further east than now, so it runs north through the wall 0.2 m beside the door's
+// jamb (gt-building seed 59: 0.12 m), not through it.
 struct StalledBesideADoor {
   SegmentWorld world = test::corridor_with_a_door();
   Pose2 at{4.6f, 8.55f, static_cast<float>(M_PI / 2)};

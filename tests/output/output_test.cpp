@@ -69,7 +69,8 @@ TEST(Tum, WritesQuaternionOfYaw) {
   const std::string text = slurp(path);
   double t, x, y, z, qx, qy, qz, qw;
   const std::size_t nl = text.find('\n');
-  ASSERT_EQ(std::sscanf(text.c_str() + nl + 1, "%lf %lf %lf %lf %lf %lf %lf %lf", &t, &x, &y, &z, &qx, &qy, &qz, &qw), 8);
+  ASSERT_EQ(std::sscanf(text.c_str() + nl + 1, "%lf %lf %lf %lf %lf %lf %lf %lf", &t, &x, &y, &z, &qx, &qy, &qz, &qw),
+            8);
   EXPECT_DOUBLE_EQ(t, 1.25);
   EXPECT_NEAR(qz, std::sqrt(0.5), 1e-9);
   EXPECT_NEAR(qw, std::sqrt(0.5), 1e-9);
@@ -87,7 +88,8 @@ TEST(PgmMap, WritesTopRowFirstAndYaml) {
   ASSERT_EQ(write_map(stem, m), Status::kOk);
   const std::string pgm = slurp(stem + ".pgm");
   ASSERT_GE(pgm.size(), 4u);
-  EXPECT_EQ(pgm.substr(pgm.size() - 4), std::string({char(kPgmUnknown), char(kPgmFree), char(kPgmOccupied), char(kPgmFree)}));
+  EXPECT_EQ(pgm.substr(pgm.size() - 4),
+            std::string({char(kPgmUnknown), char(kPgmFree), char(kPgmOccupied), char(kPgmFree)}));
   const std::string yaml = slurp(stem + ".yaml");
   EXPECT_NE(yaml.find("image: kestrel_output_map.pgm"), std::string::npos);
   EXPECT_NE(yaml.find("resolution: 0.100000"), std::string::npos);

@@ -45,7 +45,8 @@ TEST(GridSearch, WallsAreGoneAroundAndNarrowGapsAreClosed) {
   EXPECT_GT(through, 1200);  // straight across would be 600; by the door 2 x (30 x 14 + 21 x 10)
   PathCells path;
   ASSERT_EQ(p.search->path_to({180, 120}, path), Status::kOk);
-  const bool via_door = std::any_of(path.begin(), path.end(), [](Cell c) { return c.x == 150 && c.y >= 170 && c.y <= 177; });
+  const bool via_door =
+      std::any_of(path.begin(), path.end(), [](Cell c) { return c.x == 150 && c.y >= 170 && c.y <= 177; });
   EXPECT_TRUE(via_door);
   // A 4-cell (0.48 m) door: closed.
   paint(*p.grid, 150, 170, 150, 177, kWallCell);

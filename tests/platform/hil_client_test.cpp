@@ -123,15 +123,18 @@ TEST(HilClient, StampsAreMappedOntoTheBoardsClock) {
   scan.beam_count = 1;
   send_msg(pair.server, HilType::kLaserScan, scan);
   static LaserScan got_scan;
-  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return static_cast<hal::LaserScanner&>(hil).poll(got_scan) == Status::kOk; }));
+  ASSERT_TRUE(
+      pump_until(hil, pair.client, [&] { return static_cast<hal::LaserScanner&>(hil).poll(got_scan) == Status::kOk; }));
   // (The offset leaks 200 ppm of the 10 ms between, 2 us: DeviceClock's drift allowance.)
-  EXPECT_NEAR(static_cast<double>(got_scan.stamp.us), static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(5)).us), 3.0);
+  EXPECT_NEAR(static_cast<double>(got_scan.stamp.us),
+              static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(5)).us), 3.0);
   FlightStatus st;
   st.stamp = TimeUs::from_us(31'000);
   send_msg(pair.server, HilType::kFlightStatus, st);
   FlightStatus got_st;
   ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.poll_status(got_st) == Status::kOk; }));
-  EXPECT_NEAR(static_cast<double>(got_st.stamp.us), static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(6)).us), 3.0);
+  EXPECT_NEAR(static_cast<double>(got_st.stamp.us),
+              static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(6)).us), 3.0);
   // A quicker frame: stamped 40 ms, arriving at its own stamp's board time less 2 ms of the
   // delay all the others had. It moves the stamps by that saved delay and no more.
   board.set(TimeUs::from_s(3600) + Duration::from_ms(13));
@@ -140,7 +143,8 @@ TEST(HilClient, StampsAreMappedOntoTheBoardsClock) {
   send_msg(pair.server, HilType::kImu, quick);
   ImuSample got_quick;
   ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.poll(got_quick) == Status::kOk; }));
-  EXPECT_NEAR(static_cast<double>(got_quick.stamp.us), static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(13)).us), 3.0);
+  EXPECT_NEAR(static_cast<double>(got_quick.stamp.us),
+              static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(13)).us), 3.0);
   // A stamp an hour ahead (damaged, yet through its CRC): dropped and counted, the offset kept.
   board.advance(Duration::from_ms(5));
   ImuSample wild;
@@ -152,7 +156,8 @@ TEST(HilClient, StampsAreMappedOntoTheBoardsClock) {
   ImuSample got_next;
   ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.poll(got_next) == Status::kOk; }));
   EXPECT_EQ(hil.counters().bad_stamps, 1u);
-  EXPECT_NEAR(static_cast<double>(got_next.stamp.us), static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(18)).us), 3.0);
+  EXPECT_NEAR(static_cast<double>(got_next.stamp.us),
+              static_cast<double>((TimeUs::from_s(3600) + Duration::from_ms(18)).us), 3.0);
 }
 
 TEST(HilClient, SendsSetpointsAndArmCommands) {

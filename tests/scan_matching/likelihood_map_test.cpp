@@ -25,8 +25,10 @@ TEST(LikelihoodMap, DrawingPrimitiveEqualsBruteForce) {
     for (int i = 0; i < 12; ++i) {
       MapSegment s{static_cast<int16_t>(coord(rng)), static_cast<int16_t>(coord(rng)), 0, 0};
       const int kind = i % 4;  // long, short, point, axis-aligned
-      s.bx = static_cast<int16_t>(kind == 2 ? s.ax : std::clamp(s.ax + (kind == 1 ? 40 : 900) * ((i & 1) ? 1 : -1), 0, 127 * kSub));
-      s.by = static_cast<int16_t>(kind == 3 || kind == 2 ? s.ay : std::clamp(s.ay + (kind == 1 ? -25 : 500), 0, 127 * kSub));
+      s.bx = static_cast<int16_t>(
+          kind == 2 ? s.ax : std::clamp(s.ax + (kind == 1 ? 40 : 900) * ((i & 1) ? 1 : -1), 0, 127 * kSub));
+      s.by = static_cast<int16_t>(kind == 3 || kind == 2 ? s.ay
+                                                         : std::clamp(s.ay + (kind == 1 ? -25 : 500), 0, 127 * kSub));
       segs.push_back(s);
       ASSERT_EQ(map->draw(s), Status::kOk);
     }
@@ -36,7 +38,8 @@ TEST(LikelihoodMap, DrawingPrimitiveEqualsBruteForce) {
       for (int x = 0; x < 128; ++x) {
         uint8_t ref = 0;
         for (const MapSegment& s : segs) {
-          ref = std::max(ref, map->kernel().value(SegmentGeometry(s).distance2(x * kSub + kSub / 2, y * kSub + kSub / 2)));
+          ref = std::max(ref,
+                         map->kernel().value(SegmentGeometry(s).distance2(x * kSub + kSub / 2, y * kSub + kSub / 2)));
         }
         ASSERT_EQ(map->at(x, y), ref) << "cell " << x << "," << y << " round " << round;
         nonzero += ref != 0;

@@ -15,7 +15,9 @@ template <class Storage>
 struct RigOf {
   std::unique_ptr<Storage> storage = std::make_unique<Storage>();
   std::unique_ptr<ScanMatcher> m;
-  explicit RigOf(const Params& p = Params{}) { m = std::make_unique<ScanMatcher>(p, storage->map_a, storage->map_b, true); }
+  explicit RigOf(const Params& p = Params{}) {
+    m = std::make_unique<ScanMatcher>(p, storage->map_a, storage->map_b, true);
+  }
 };
 using Rig = RigOf<OnboardMapStorage>;
 // The 10 m map the vehicle flew before the 20 m one (1024 cells; 7.7 m at 7.5 mm).
@@ -239,11 +241,13 @@ TEST(ScanMatcher, RoundACornerIntoAnotherCorridorTheRuleReArms) {
     }
     for (int k = 1; k <= 40; ++k) {
       ++i;
-      turn[on].add(r.m->process(test::cast_scan({0, 0, 1.5708f * k / 40}, corner, 1081, 4.712f, at(i))), i, unbounded_m2);
+      turn[on].add(r.m->process(test::cast_scan({0, 0, 1.5708f * k / 40}, corner, 1081, 4.712f, at(i))), i,
+                   unbounded_m2);
     }
     for (int k = 1; k <= 200; ++k) {
       ++i;
-      north[on].add(r.m->process(test::cast_scan({0, kStep * k, 1.5708f}, corner, 1081, 4.712f, at(i))), i, unbounded_m2);
+      north[on].add(r.m->process(test::cast_scan({0, kStep * k, 1.5708f}, corner, 1081, 4.712f, at(i))), i,
+                    unbounded_m2);
     }
     EXPECT_GT(east.degenerate, east.scans / 2) << on;
     EXPECT_GT(north[on].degenerate, north[on].scans / 2) << on;
@@ -271,7 +275,8 @@ TEST(ScanMatcher, TracksMotionWithoutAllocating) {
   float worst = 0;
   std::vector<LaserScan> scans;
   for (int i = 1; i <= 60; ++i) {
-    scans.push_back(test::cast_scan({-1 + 0.025f * i, -0.5f + 0.01f * i, 0.004f * i}, test::room(), 1081, 4.712f, at(i)));
+    scans.push_back(
+        test::cast_scan({-1 + 0.025f * i, -0.5f + 0.01f * i, 0.004f * i}, test::room(), 1081, 4.712f, at(i)));
   }
   {
     alloc_guard::Scope guard;
@@ -298,7 +303,8 @@ TEST(ScanMatcher, VelocityPerScanIgnoresTheStamps) {
     Rig r(p);
     const TimeUs stamps[3] = {TimeUs::from_us(0), TimeUs::from_us(1000000), TimeUs::from_us(1100000)};
     for (int i = 0; i < 3; ++i) {
-      const ScanMatch s = r.m->process(test::cast_scan({-1 + 0.1f * i, -0.5f, 0}, test::room(), 1081, 4.712f, stamps[i]));
+      const ScanMatch s =
+          r.m->process(test::cast_scan({-1 + 0.1f * i, -0.5f, 0}, test::room(), 1081, 4.712f, stamps[i]));
       ASSERT_TRUE(s.ok());
       // By the stamps, the 0.1 s step gives a window (0.05 m from the acceleration floor plus
       // the hypotheses' spread) whose edge is the truth: only the per-scan prediction is sure
@@ -400,7 +406,8 @@ TEST(ScanMatcher, CovarianceAlongCorridorAndRoundInCorner) {
   }
   {
     Rig r(p);
-    const std::vector<test::Wall> corner{{1, -3, 1, 1}, {1, 1, -3, 1}, {-1.5f, -1.5f, -1.5f, 0}, {-1.5f, -1.5f, 0, -1.5f}};
+    const std::vector<test::Wall> corner{
+        {1, -3, 1, 1}, {1, 1, -3, 1}, {-1.5f, -1.5f, -1.5f, 0}, {-1.5f, -1.5f, 0, -1.5f}};
     ASSERT_TRUE(r.m->process(test::cast_scan({0, 0, 0}, corner, 1081, 4.712f, at(0))).ok());
     const ScanMatch s = r.m->process(test::cast_scan({0.01f, 0, 0}, corner, 1081, 4.712f, at(1)));
     ASSERT_TRUE(s.ok());

@@ -90,7 +90,8 @@ TEST(Relocaliser, FindsTheShortLaserAcrossTheWindowOrDeclines) {
   for (int i = 0; i < 120; ++i) {
     const Pose2 truth{uniform(-1.5f, 2.5f), uniform(-2.0f, 2.5f), uniform(-3.1f, 3.1f)};
     const float err = uniform(0.3f, 4.2f), dir = uniform(-3.1f, 3.1f);
-    const Pose2 guess{truth.x + err * std::cos(dir), truth.y + err * std::sin(dir), truth.theta + uniform(-0.25f, 0.25f)};
+    const Pose2 guess{truth.x + err * std::cos(dir), truth.y + err * std::sin(dir),
+                      truth.theta + uniform(-0.25f, 0.25f)};
     const Relocalisation fix = f.locate(truth, guess);
     if (!fix.fixed()) continue;  // it may decline (a view the reference does not share), never mislead
     ++fixed;
@@ -205,7 +206,8 @@ TEST(Relocaliser, DeclinesAViewFromBehindAWallTheReferenceSaw) {
     const Pose2 truth{1.4f, 10.0f, heading};
     for (const float dx : {-2.2f, -1.5f}) {
       const Relocalisation fix = f.locate(truth, {truth.x + dx, truth.y, truth.theta});
-      EXPECT_EQ(fix.outcome, RelocaliseOutcome::kSeesThrough) << heading << " " << dx << ": " << fix.pose.x << " " << fix.pose.y;
+      EXPECT_EQ(fix.outcome, RelocaliseOutcome::kSeesThrough)
+          << heading << " " << dx << ": " << fix.pose.x << " " << fix.pose.y;
     }
   }
 }

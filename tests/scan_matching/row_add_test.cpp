@@ -44,7 +44,8 @@ TEST(RowAdd, RegisterRowsEqualScalar) {
       constexpr int G = decltype(groups_tag)::value;
       const Data d(100 + G, 8 * G, 1);
       std::array<uint16_t, 8 * G> lanes{}, scalar{};
-      for (int j = 0; j < 8 * G; ++j) lanes[static_cast<std::size_t>(j)] = scalar[static_cast<std::size_t>(j)] = static_cast<uint16_t>(j * 7);
+      for (int j = 0; j < 8 * G; ++j)
+        lanes[static_cast<std::size_t>(j)] = scalar[static_cast<std::size_t>(j)] = static_cast<uint16_t>(j * 7);
       sum_rows_lanes<G>(lanes.data(), d.cells.data(), d.offsets.data(), 300);
       sum_rows_scalar(scalar.data(), d.cells.data(), d.offsets.data(), 300, 8 * G);
       EXPECT_EQ(lanes, scalar) << G;
@@ -69,7 +70,8 @@ void check_block() {
   sum_block_lanes<R>(lanes.data(), 8, d.cells.data(), Data::kDim, d.offsets.data(), 300);
   for (int r = 0; r < R; ++r) {
     for (int i = 0; i < 300; ++i) {
-      add_row_scalar(scalar.data() + 8 * r, d.cells.data() + d.offsets[static_cast<std::size_t>(i)] + r * Data::kDim, 8);
+      add_row_scalar(scalar.data() + 8 * r, d.cells.data() + d.offsets[static_cast<std::size_t>(i)] + r * Data::kDim,
+                     8);
     }
   }
   EXPECT_EQ(lanes, scalar) << R;

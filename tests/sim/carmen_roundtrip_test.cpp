@@ -100,7 +100,9 @@ void record_and_replay(const LaserParams& laser, const char* name) {
 }
 
 TEST(CarmenRoundTrip, Utm30lxScansComeBackIdentical) { record_and_replay(LaserParams::utm30lx(), "utm.log"); }
-TEST(CarmenRoundTrip, Urg04lxScansComeBackIdenticalFromGzip) { record_and_replay(LaserParams::urg04lx(), "urg.log.gz"); }
+TEST(CarmenRoundTrip, Urg04lxScansComeBackIdenticalFromGzip) {
+  record_and_replay(LaserParams::urg04lx(), "urg.log.gz");
+}
 
 }  // namespace
 }  // namespace kestrel::sim

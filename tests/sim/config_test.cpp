@@ -59,7 +59,8 @@ TEST(ConfigFile, ShippedExampleHoldsEveryDefault) {
   SimConfig cfg;
   ASSERT_EQ(cfg.apply(f), "");
   const SimConfig defaults;
-  EXPECT_EQ(f.entries().size(), VehicleParams::kBindingCount + LaserParams::kBindingCount + ImuParams::kBindingCount + 5);
+  EXPECT_EQ(f.entries().size(),
+            VehicleParams::kBindingCount + LaserParams::kBindingCount + ImuParams::kBindingCount + 5);
   EXPECT_DOUBLE_EQ(cfg.vehicle.k_thrust, defaults.vehicle.k_thrust);
   EXPECT_DOUBLE_EQ(cfg.vehicle.attitude_tau_s, defaults.vehicle.attitude_tau_s);
   EXPECT_DOUBLE_EQ(cfg.laser.first_angle_rad, defaults.laser.first_angle_rad);

@@ -27,7 +27,8 @@ TEST(CommandScript, ParsesAndReportsErrorsWithLines) {
   CommandScript s;
   EXPECT_EQ(s.parse(CommandScript::default_text(), "d"), "");
   EXPECT_GT(s.steps.size(), 10u);
-  EXPECT_EQ(s.parse("0 0 0 0.5 0\n1 2 3\n", "s.txt"), "s.txt:2: expected 5 numbers: T_S PITCH_DEG ROLL_DEG THRUST YAW_RATE_DPS");
+  EXPECT_EQ(s.parse("0 0 0 0.5 0\n1 2 3\n", "s.txt"),
+            "s.txt:2: expected 5 numbers: T_S PITCH_DEG ROLL_DEG THRUST YAW_RATE_DPS");
   EXPECT_EQ(s.parse("0 0 0 1.5 0\n", "s.txt"), "s.txt:1: thrust must be between 0 and 1");
   EXPECT_EQ(s.parse("1 0 0 0.5 0\n0.5 0 0 0.5 0\n", "s.txt"), "s.txt:2: time goes backwards");
   EXPECT_EQ(s.parse("0 0 0 0.5 x\n", "s.txt"), "s.txt:1: 'x' is not a number");

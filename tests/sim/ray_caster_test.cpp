@@ -180,8 +180,9 @@ TEST(RayCaster, AgreesWithBruteForceOnRandomRays) {
       "start 1 1 1 0\nwall 0 0 20 0\nwall 20 0 20 12\nwall 20 12 0 12\nwall 0 12 0 0\n"
       "wall 7 0 7 5\nwall 7 7 7 12 glass\nwall 13 3 18 9 z=0:0.9\nbox 4 8 1.5 0.8 z=0:0.75 yaw=30\n"
       "pillar 15 3 0.4\npoly 10 9 12 9 11 11 z=0.5:1.7\n");
-  for (const auto& [cell, walls] : {std::pair{0.5, WallSurfaces::kCentreLines}, std::pair{1.0, WallSurfaces::kCentreLines},
-                                    std::pair{3.0, WallSurfaces::kCentreLines}, std::pair{1.0, WallSurfaces::kBoxOutlines}}) {
+  for (const auto& [cell, walls] :
+       {std::pair{0.5, WallSurfaces::kCentreLines}, std::pair{1.0, WallSurfaces::kCentreLines},
+        std::pair{3.0, WallSurfaces::kCentreLines}, std::pair{1.0, WallSurfaces::kBoxOutlines}}) {
     RayCaster rc(w, cell, walls);
     Rng rng(99);
     int cast = 0;

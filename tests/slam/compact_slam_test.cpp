@@ -45,7 +45,8 @@ Flight fly(Rig& r, const test::SegmentWorld& w, const test::LaserModel& laser, i
     f.worst_error_m = std::max(f.worst_error_m, err);
     f.final_error_m = err;
     // The filter holds still while the map warms up, as it does on the ground.
-    if (k >= static_cast<int>(SlamParams{}.warmup_scans)) offset = {offset.x + drift.x, offset.y + drift.y, offset.theta + drift.theta};
+    if (k >= static_cast<int>(SlamParams{}.warmup_scans))
+      offset = {offset.x + drift.x, offset.y + drift.y, offset.theta + drift.theta};
   }
   return f;
 }

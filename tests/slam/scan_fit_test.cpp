@@ -19,11 +19,13 @@ std::unique_ptr<SlamMap> room_map() {
   EXPECT_EQ(map->reset(kCell, 0, 0), Status::kOk);
   const test::SegmentWorld w = test::slam_room();
   MapScan s;
-  for (const Pose2& p : {Pose2{0, 0, 0}, Pose2{-1.5f, 0.5f, 1.0f}, Pose2{1.0f, -2.0f, -2.0f}, Pose2{-2.5f, -1.5f, 2.5f}}) {
+  for (const Pose2& p :
+       {Pose2{0, 0, 0}, Pose2{-1.5f, 0.5f, 1.0f}, Pose2{1.0f, -2.0f, -2.0f}, Pose2{-2.5f, -1.5f, 2.5f}}) {
     thin_to_map_scan(test::scan_points(w, test::LaserModel::utm30lx(), p), kCell, 1081, s);
     const ScanPlacement at(*map, p);
     for (int k = 0; k < 6; ++k) {
-      for (uint16_t i = 0; i < s.count; ++i) map->draw_return(at.sensor(), at.place(s.point[i]), 4 * kSub, 80 * kSub, 60);
+      for (uint16_t i = 0; i < s.count; ++i)
+        map->draw_return(at.sensor(), at.place(s.point[i]), 4 * kSub, 80 * kSub, 60);
     }
   }
   return map;

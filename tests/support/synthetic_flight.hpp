@@ -184,7 +184,14 @@ class StreamPlayer {
       switch (which) {
         case 0: filter.set_attitude(f_.attitude[i_att_++]); break;
         case 1: last_ = filter.predict(f_.imu[i_imu_++]); break;
-        case 2: last_ = filter.update_pose(f_.poses[i_pose_++]); if (!ok(last_)) { ++pose_failures; last_failure = last_; failure_at = f_.poses[i_pose_ - 1].stamp; } break;
+        case 2:
+          last_ = filter.update_pose(f_.poses[i_pose_++]);
+          if (!ok(last_)) {
+            ++pose_failures;
+            last_failure = last_;
+            failure_at = f_.poses[i_pose_ - 1].stamp;
+          }
+          break;
         default: last_ = filter.update_altitude(f_.altitude[i_alt_++]); if (!ok(last_)) ++alt_failures; break;
       }
     }

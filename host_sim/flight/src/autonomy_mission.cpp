@@ -59,7 +59,8 @@ void draw_srt_tree(const exploration::SrtStarPlanner& planner, output::Canvas& c
     c.line(x - 3, y - 3, x + 3, y + 3, output::colors::kPurple, 2);
     c.line(x - 3, y + 3, x + 3, y - 3, output::colors::kPurple, 2);
   }
-  if (planner.has_waypoint()) c.world_circle(planner.waypoint().x, planner.waypoint().y, 6, output::colors::kPurple, false);
+  if (planner.has_waypoint())
+    c.world_circle(planner.waypoint().x, planner.waypoint().y, 6, output::colors::kPurple, false);
 }
 
 // The grid frontier explorer (paper 003 Figure 7): its occupied cells, the frontier cells of
@@ -224,7 +225,8 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       // Stalled this long on the way home, the trail ahead is laid onto the scan (0: never).
       if (!parse_double(value, d) || d < 0) return "return_realign_s: '" + value + "' is not a non-negative number";
       out.stack.mission.return_realign_s = static_cast<float>(d);
-    } else if (bool* on = explorer_switch(key, out.stack.explorer); on != nullptr && kind == mission::MissionKind::kExplore) {
+    } else if (bool* on = explorer_switch(key, out.stack.explorer);
+               on != nullptr && kind == mission::MissionKind::kExplore) {
       if (value != "on" && value != "off") {
         std::string e = key;
         e.append(": expected on or off, got '").append(value).append("'");
@@ -232,27 +234,33 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       }
       *on = value == "on";
     } else if (key == "srt_range_m" && kind == mission::MissionKind::kExplore) {
-      if (!parse_double(value, d) || d <= 0 || d >= 65) return "srt_range_m: '" + value + "' is not a range in (0, 65) m";
+      if (!parse_double(value, d) || d <= 0 || d >= 65)
+        return "srt_range_m: '" + value + "' is not a range in (0, 65) m";
       out.stack.explorer.srt.perception_range_m = static_cast<float>(d);
     } else if (key == "frontier_reach_m" && kind == mission::MissionKind::kExplore) {
       // How far the frontier explorer's rays draw (4 m by default, for both lasers).
-      if (!parse_double(value, d) || d <= 0 || d > 30) return "frontier_reach_m: '" + value + "' is not a range in (0, 30] m";
+      if (!parse_double(value, d) || d <= 0 || d > 30)
+        return "frontier_reach_m: '" + value + "' is not a range in (0, 30] m";
       out.stack.explorer.frontier.reach_m = static_cast<float>(d);
     } else if (key == "frontier_relaxed_m" && kind == mission::MissionKind::kExplore) {
       // The frontier explorer's second search (0: none); at most its lethal distance (checked at start).
-      if (!parse_double(value, d) || d < 0 || d > 2) return "frontier_relaxed_m: '" + value + "' is not a distance in [0, 2] m";
+      if (!parse_double(value, d) || d < 0 || d > 2)
+        return "frontier_relaxed_m: '" + value + "' is not a distance in [0, 2] m";
       out.stack.explorer.frontier.relaxed_lethal_m = static_cast<float>(d);
     } else if (key == "frontier_coastal" && kind == mission::MissionKind::kExplore) {
       // Coastal navigation: the share of the laser's range within which paths keep to walls (0: off).
-      if (!parse_double(value, d) || d < 0 || d > 1) return "frontier_coastal: '" + value + "' is not a fraction in [0, 1]";
+      if (!parse_double(value, d) || d < 0 || d > 1)
+        return "frontier_coastal: '" + value + "' is not a fraction in [0, 1]";
       out.stack.explorer.frontier.coastal_fraction = static_cast<float>(d);
     } else if (key == "speed_limit_mps" && kind == mission::MissionKind::kExplore) {
       // Section V's speed limit (0.5 m/s by default, paper 002's); the approach limiter
       // still bounds the closing speed on every return, unless approach=off.
-      if (!parse_double(value, d) || d <= 0 || d > 5) return "speed_limit_mps: '" + value + "' is not a speed in (0, 5] m/s";
+      if (!parse_double(value, d) || d <= 0 || d > 5)
+        return "speed_limit_mps: '" + value + "' is not a speed in (0, 5] m/s";
       out.stack.explorer.guidance.speed_limit_mps = static_cast<float>(d);
     } else if (key == "approach_blind_mps" && kind == mission::MissionKind::kExplore) {
-      if (!parse_double(value, d) || d < 0 || d > 10) return "approach_blind_mps: '" + value + "' is not a speed in [0, 10] m/s";
+      if (!parse_double(value, d) || d < 0 || d > 10)
+        return "approach_blind_mps: '" + value + "' is not a speed in [0, 10] m/s";
       out.stack.explorer.approach.blind_speed_mps = static_cast<float>(d);
     } else if (float* distance = explorer_distance(key, out.stack.explorer);
                distance != nullptr && kind == mission::MissionKind::kExplore) {
@@ -268,12 +276,14 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "altitude_m" && kind != mission::MissionKind::kWaypoints) {
       // Paper 000 section 3.3: the laser sees only its own plane; an operator picks the height
       // that clears what it cannot see (iarc-arena's 1.0 m stair railing) and still sees the rest.
-      if (!parse_double(value, d) || d < 0.3 || d > 3.0) return "altitude_m: '" + value + "' is not a height in [0.3, 3] m";
+      if (!parse_double(value, d) || d < 0.3 || d > 3.0)
+        return "altitude_m: '" + value + "' is not a height in [0.3, 3] m";
       out.stack.mission.takeoff_altitude_m = static_cast<float>(d);
     } else if (key == "corridor_keys_s") {
       // The scan matcher's degenerate_key_interval_s: off by default (README, Exploration;
       // modules/exploration/EXPERIMENTS.md).
-      if (!parse_double(value, d) || d < 0 || d > 60) return "corridor_keys_s: '" + value + "' is not a time in [0, 60] s";
+      if (!parse_double(value, d) || d < 0 || d > 60)
+        return "corridor_keys_s: '" + value + "' is not a time in [0, 60] s";
       out.stack.matcher.degenerate_key_interval_s = static_cast<float>(d);
     } else if (key == "delay_s") {
       if (!parse_double(value, d) || d < 0 || d > 2) return "delay_s: '" + value + "' is not a delay in [0, 2] s";
@@ -332,7 +342,8 @@ Status AutonomyMission::start(sim::Simulation& sim) {
   if (options_.ekf_for_laser) {
     cfg.ekf = autonomy::vehicle_ekf_params(laser->geometry().max_range_mm);
     params::ParamError err;
-    if (!options_.ekf_file.empty() && estimation::load_ekf_params(options_.ekf_file.c_str(), cfg.ekf, err) != Status::kOk) {
+    if (!options_.ekf_file.empty() &&
+        estimation::load_ekf_params(options_.ekf_file.c_str(), cfg.ekf, err) != Status::kOk) {
       failure_ = options_.ekf_file + ":" + std::to_string(err.line) + ": " + err.message;
       return Status::kInvalidArgument;
     }
@@ -514,13 +525,11 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
       const exploration::FrontierCounters k = f.counters();
       const std::pair<const char*, uint32_t> rows[] = {
           {"scans_offered", k.scans_offered}, {"scans_dropped", k.scans_dropped}, {"scans_drawn", k.scans_drawn},
-          {"draw_errors", k.draw_errors},     {"plans", k.plans},                 {"plans_dropped", k.plans_dropped},
-          {"plans_taken", k.plans_taken},     {"search_failures", k.search_failures}, {"relaxed_plans", k.relaxed_plans},
-          {"grid_restarts", k.grid_restarts}, {"homed", k.homed},
-          {"goals", k.goals},
-          {"arrivals", k.arrivals},           {"stale_holds", k.stale_holds},     {"blacklisted", k.blacklisted},     {"stuck", k.stuck},
-          {"looked_at", k.looked_at},
-          {"peak_open", k.peak_open}};
+          {"draw_errors", k.draw_errors}, {"plans", k.plans}, {"plans_dropped", k.plans_dropped},
+          {"plans_taken", k.plans_taken}, {"search_failures", k.search_failures}, {"relaxed_plans", k.relaxed_plans},
+          {"grid_restarts", k.grid_restarts}, {"homed", k.homed}, {"goals", k.goals},
+          {"arrivals", k.arrivals}, {"stale_holds", k.stale_holds}, {"blacklisted", k.blacklisted},
+          {"stuck", k.stuck}, {"looked_at", k.looked_at}, {"peak_open", k.peak_open}};
       for (const auto& [name, v] : rows) out.emplace_back(std::string("frontier.") + name, v);
     }
   }
@@ -539,7 +548,8 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
   output::TumWriter tum;
   if (tum.open(dir + "/trajectory_est.tum") != Status::kOk) return Status::kIoError;
   for (const EstimateSample& s : samples_)
-    if (tum.write(s.t_s, s.est_pos.x(), s.est_pos.y(), s.est_pos.z(), s.est_yaw) != Status::kOk) return Status::kIoError;
+    if (tum.write(s.t_s, s.est_pos.x(), s.est_pos.y(), s.est_pos.z(), s.est_yaw) != Status::kOk)
+      return Status::kIoError;
   if (tum.close() != Status::kOk) return Status::kIoError;
   // The compact SLAM's map, when it ran (DESIGN.md's map.pgm + map.yaml), and as a picture:
   // its grey levels with the estimated path (slam_map.png).
@@ -555,7 +565,8 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
       for (int y = 0; y < map.height; ++y) {
         for (int x = 0; x < map.width; ++x) {
           // The cell under this pixel block's centre; rows run down the canvas as y goes up.
-          const double wx = map.origin_x_m + (x + 0.5) * map.resolution_m, wy = map.origin_y_m + (y + 0.5) * map.resolution_m;
+          const double wx = map.origin_x_m + (x + 0.5) * map.resolution_m,
+                       wy = map.origin_y_m + (y + 0.5) * map.resolution_m;
           const slam::SubPoint sp = m.to_sub(static_cast<float>(wx), static_cast<float>(wy));
           const uint8_t v = m.at(sp.x >> slam::kSubBits, sp.y >> slam::kSubBits);
           const int px = x * kPx, py = (map.height - 1 - y) * kPx;
@@ -626,7 +637,8 @@ Status AutonomyMission::write_outputs(const std::string& dir) const {
       ninety.x = {0.0, cov.x.back()};
       ninety.y = {90.0, 90.0};
     }
-    const output::Canvas cplot = output::plot_panels({{"coverage of the reachable area", "%", {cov, ninety}}}, "time [s]", 1000, 360);
+    const output::Canvas cplot =
+        output::plot_panels({{"coverage of the reachable area", "%", {cov, ninety}}}, "time [s]", 1000, 360);
     if (output::write_png(dir + "/coverage_vs_time.png", cplot) != Status::kOk) return Status::kIoError;
   }
 #endif

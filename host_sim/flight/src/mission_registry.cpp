@@ -32,7 +32,8 @@ const std::vector<MissionInfo>& mission_table() {
   // One row per mission.
   static const std::vector<MissionInfo> table = {
       {"manual", "replay a command script (--script FILE, default: a tour of iarc-arena)", make_manual},
-      {"hover", "autonomy stack: take off, hover at 1 m (hover_s, default 60 s), land", make_flight<mission::MissionKind::kHover>},
+      {"hover", "autonomy stack: take off, hover at 1 m (hover_s, default 60 s), land",
+       make_flight<mission::MissionKind::kHover>},
       {"waypoints", "autonomy stack: fly the waypoints of --waypoints FILE (x y z [heading_deg [hold_s]]), land",
        make_flight<mission::MissionKind::kWaypoints>},
       {"explore", "autonomy stack: explore (--explorer blend|wallfollow|srt|frontier), fly home along the trail, land",

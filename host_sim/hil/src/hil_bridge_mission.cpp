@@ -128,7 +128,8 @@ sim::MissionState HilBridgeMission::tick(sim::Simulation& sim) {
   AltimeterSample alt;
   while (sim.altimeter().poll(alt) == Status::kOk) send(static_cast<uint8_t>(comms::HilType::kAltitude), alt);
   FlightStatus st;
-  if (sim.flight_controller().poll_status(st) == Status::kOk) send(static_cast<uint8_t>(comms::HilType::kFlightStatus), st);
+  if (sim.flight_controller().poll_status(st) == Status::kOk)
+    send(static_cast<uint8_t>(comms::HilType::kFlightStatus), st);
   receive(sim);
   return disconnected_ ? sim::MissionState::kDone : sim::MissionState::kRunning;
 }

@@ -5,7 +5,8 @@
 namespace kestrel::metrics {
 
 RunawayCounter::RunawayCounter(double rise_m, double window_s)
-    : rise_m_(std::isfinite(rise_m) ? rise_m : INFINITY), window_s_(std::isfinite(window_s) && window_s > 0 ? window_s : 0.0) {}
+    : rise_m_(std::isfinite(rise_m) ? rise_m : INFINITY),
+      window_s_(std::isfinite(window_s) && window_s > 0 ? window_s : 0.0) {}
 
 Status RunawayCounter::add(double t_s, double error_m) {
   if (!std::isfinite(t_s) || !std::isfinite(error_m)) return Status::kNotFinite;

@@ -76,7 +76,8 @@ std::string CommandScript::parse(std::string_view text, std::string_view source_
         return where + "expected 5 numbers: T_S PITCH_DEG ROLL_DEG THRUST YAW_RATE_DPS";
       double v[5];
       for (int i = 0; i < 5; ++i)
-        if (!num(toks[static_cast<std::size_t>(i)], v[i])) return where + "'" + toks[static_cast<std::size_t>(i)] + "' is not a number";
+        if (!num(toks[static_cast<std::size_t>(i)], v[i]))
+          return where + "'" + toks[static_cast<std::size_t>(i)] + "' is not a number";
       if (v[3] < 0 || v[3] > 1) return where + "thrust must be between 0 and 1";
       st.t_s = v[0];
       st.setpoint.pitch_rad = static_cast<float>(v[1] * kDeg);

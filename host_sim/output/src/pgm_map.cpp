@@ -14,8 +14,8 @@ Status write_map(const std::string& stem, const GridImage& map) {
   std::fprintf(f, "P5\n# kestrel occupancy map\n%d %d\n255\n", map.width, map.height);
   bool ok = true;
   for (int row = map.height - 1; row >= 0 && ok; --row)
-    ok = std::fwrite(map.cells.data() + static_cast<std::size_t>(row) * map.width, 1, static_cast<std::size_t>(map.width), f) ==
-         static_cast<std::size_t>(map.width);
+    ok = std::fwrite(map.cells.data() + static_cast<std::size_t>(row) * map.width, 1,
+                     static_cast<std::size_t>(map.width), f) == static_cast<std::size_t>(map.width);
   ok = (std::fclose(f) == 0) && ok;
   if (!ok) return Status::kIoError;
 

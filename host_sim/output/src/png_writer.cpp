@@ -30,7 +30,8 @@ Status write_png(const std::string& path, const Canvas& canvas) {
   static_assert(sizeof(Rgb) == 3, "Rgb must be packed for libpng rows");
   auto* base = reinterpret_cast<png_bytep>(const_cast<Rgb*>(canvas.pixels().data()));
   for (int y = 0; y < canvas.height(); ++y)
-    rows[static_cast<std::size_t>(y)] = base + static_cast<std::size_t>(y) * static_cast<std::size_t>(canvas.width()) * 3;
+    rows[static_cast<std::size_t>(y)] =
+        base + static_cast<std::size_t>(y) * static_cast<std::size_t>(canvas.width()) * 3;
   png_write_info(png, info);
   png_write_image(png, rows.data());
   png_write_end(png, nullptr);

@@ -31,7 +31,8 @@ std::string SimConfig::validate() const {
   if (!(status_rate_hz >= 1 && status_rate_hz <= 1000)) return "sim.status_rate_hz must be in [1, 1000]";
   if (!(truth_history_s >= 0.1 && truth_history_s <= 60)) return "sim.truth_history_s must be in [0.1, 60]";
   if (!(ray_grid_cell_m >= 0.1 && ray_grid_cell_m <= 10)) return "sim.ray_grid_cell_m must be in [0.1, 10]";
-  if (laser_sees_wall_thickness != 0 && laser_sees_wall_thickness != 1) return "sim.laser_sees_wall_thickness must be 0 or 1";
+  if (laser_sees_wall_thickness != 0 && laser_sees_wall_thickness != 1)
+    return "sim.laser_sees_wall_thickness must be 0 or 1";
   return "";
 }
 

@@ -127,8 +127,8 @@ bool fly(const Options& o, tuning::FlightKind kind, uint64_t seed, const estimat
     yaw_err += std::abs(std::remainder(p.pose.theta - t.yaw_rad, 2 * M_PI));
   }
   if (!log.poses.empty())
-    std::printf("  seed %-4llu scan-matcher pose vs truth: mean %.4f m, %.4f rad\n", static_cast<unsigned long long>(seed),
-                pose_err / log.poses.size(), yaw_err / log.poses.size());
+    std::printf("  seed %-4llu scan-matcher pose vs truth: mean %.4f m, %.4f rad\n",
+                static_cast<unsigned long long>(seed), pose_err / log.poses.size(), yaw_err / log.poses.size());
   std::printf("  seed %-4llu %s: %zu IMU, %zu poses (%u gated by the EKF), %zu heights, %s\n",
               static_cast<unsigned long long>(seed), kind == tuning::FlightKind::kHover ? "hover" : "waypoints",
               log.imu.size(), log.poses.size(), log.poses_gated, log.altitude.size(), log.end_message.c_str());
@@ -136,8 +136,9 @@ bool fly(const Options& o, tuning::FlightKind kind, uint64_t seed, const estimat
 }
 
 void print_error(const char* label, const estimation::VelocityError& e) {
-  std::printf("  %-28s objective %.4f  vel_err mean %.4f m/s  std %.4f m/s  rms %.4f m/s  pos_err mean %.4f m  (%zu samples)\n",
-              label, e.objective, e.mean_mps, e.std_mps, e.rms_mps, e.pos_mean_m, e.samples);
+  std::printf(
+      "  %-28s objective %.4f  vel_err mean %.4f m/s  std %.4f m/s  rms %.4f m/s  pos_err mean %.4f m  (%zu samples)\n",
+      label, e.objective, e.mean_mps, e.std_mps, e.rms_mps, e.pos_mean_m, e.samples);
 }
 
 }  // namespace
@@ -190,7 +191,8 @@ int main(int argc, char** argv) {
   print_error("learned parameters", learned.after);
   const float tau = lo.position_time_s;
   const estimation::VelocityError test_before = estimation::evaluate_velocity_error(*filter, hand, test_runs, tau);
-  const estimation::VelocityError test_after = estimation::evaluate_velocity_error(*filter, learned.params, test_runs, tau);
+  const estimation::VelocityError test_after =
+      estimation::evaluate_velocity_error(*filter, learned.params, test_runs, tau);
   std::printf("held-out runs:\n");
   print_error("hand-chosen parameters", test_before);
   print_error("learned parameters", test_after);

@@ -59,7 +59,8 @@ room room-D 15 9 30 9 30 15 15 15
 
 // A corridor (y 7..9) with three rooms south, two large rooms north; inside the north-east
 // room an inner room whose only entry is a 0.95 m gap in its west wall (paper 002 Fig. 5).
-constexpr std::string_view kGtBuilding = R"(# gt-building: rooms and an inner room reached through a narrow gap, paper 002 Figure 5
+constexpr std::string_view kGtBuilding =
+    R"(# gt-building: rooms and an inner room reached through a narrow gap, paper 002 Figure 5
 name gt-building
 start 1.5 8.0 0 0
 wall_height 2.7

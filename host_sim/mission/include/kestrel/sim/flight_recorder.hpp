@@ -3,8 +3,9 @@
 // the true pose at every scan (trajectory_truth.tum), a decimated true path (render.png), the
 // last scan, distance and speed, contacts, the rooms entered and the laser's coverage of the
 // world's reachable free area (metrics.json: coverage, coverage_t90_s, rooms_entered,
-// t_all_rooms_s) and its history (coverage_vs_time.png: one sample a second). Coverage marks the free-space cells each beam crosses (every 4th beam of
-// every 4th scan, in 2D along the true heading) up to its return or the maximum range.
+// t_all_rooms_s) and its history (coverage_vs_time.png: one sample a second). Coverage marks
+// the free-space cells each beam crosses (every 4th beam of every 4th scan, in 2D along the
+// true heading) up to its return or the maximum range.
 #include <vector>
 
 #include "kestrel/sim/free_space_map.hpp"
@@ -51,7 +52,9 @@ class FlightRecorder final : public SimObserver {
   double t_all_rooms_s() const { return t_all_rooms_; }  // < 0 if never
   const std::vector<double>& room_entry_s() const { return room_entry_; }  // < 0: not entered
   const FreeSpaceMap& free_space() const { return free_; }
-  bool seen(int ix, int iy) const { return free_.in_map(ix, iy) && seen_[static_cast<std::size_t>(iy) * free_.width() + ix]; }
+  bool seen(int ix, int iy) const {
+    return free_.in_map(ix, iy) && seen_[static_cast<std::size_t>(iy) * free_.width() + ix];
+  }
 
  private:
   void mark_beams(const LaserScan& scan, const VehicleState& truth);

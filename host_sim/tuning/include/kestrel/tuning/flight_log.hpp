@@ -38,7 +38,9 @@ struct FlightSpec {
   // empty --script file flew that tour silently.
   std::string script_text;
   std::string script_name = "<script>";
-  estimation::EkfParams ekf;          // the stack's filter parameters, as given (EkfParams' defaults, not the laser's: autonomy::vehicle_ekf_params)
+  // The stack's filter parameters, as given (EkfParams' defaults, not the laser's:
+  // autonomy::vehicle_ekf_params).
+  estimation::EkfParams ekf;
   bool use_default_controller = true;
   control::ControllerParams controller;  // used when use_default_controller is false
 };
