@@ -125,7 +125,8 @@ def main():
     ap.add_argument("--timeout", type=int, default=3600, help="wall-clock seconds per run")
     ap.add_argument("--mission-arg", action="append", metavar="KEY=VALUE",
                     help="passed to every run, e.g. keepout=2,8.9,5,9.1 (repeatable)")
-    ap.add_argument("--config", help="kestrel-sim --config FILE for every run, e.g. host_sim/sim/configs/perfect_imu.cfg")
+    ap.add_argument("--config",
+                    help="kestrel-sim --config FILE for every run, e.g. host_sim/sim/configs/perfect_imu.cfg")
     ap.add_argument("--plot", help="coverage-versus-time picture (PNG) of the sweep")
     ap.add_argument("--plot-tool", help="kestrel-coverage-plot (default: beside --sim)")
     args = ap.parse_args()
@@ -159,7 +160,8 @@ def main():
     print("| world | laser | explorer | runs | all rooms entered | collision-free | "
           "all rooms and collision-free | finished | median all rooms at | "
           "best all rooms at, collision-free | mean coverage | median t90 s | landed at home | "
-          "landed within 0.5 m of take-off | mean position error m | mean velocity error m/s | estimate runaways per flight hour |")
+          "landed within 0.5 m of take-off | mean position error m | mean velocity error m/s | "
+          "estimate runaways per flight hour |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     groups = {}
     for (w, l, e, s), m in results:

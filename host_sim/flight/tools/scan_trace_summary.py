@@ -101,7 +101,8 @@ def episodes(rows, args):
         verr = max(math.hypot(r["nav_vx"] - r["true_vx"], r["nav_vy"] - r["true_vy"]) for r in seg)
         a, b = rows[i], rows[bj]
         out.append(
-            "  %7.1f-%7.1f s  error %.2f -> %.2f m  truth (%.1f, %.1f) -> (%.1f, %.1f)  scans %s  key %d  restarts %d  max velocity error %.2f m/s"
+            "  %7.1f-%7.1f s  error %.2f -> %.2f m  truth (%.1f, %.1f) -> (%.1f, %.1f)  scans %s  key %d  restarts %d"
+            "  max velocity error %.2f m/s"
             % (a["t_s"], b["t_s"], a["nav_err_m"], b["nav_err_m"], a["true_x"], a["true_y"], b["true_x"], b["true_y"],
                "".join("%s%d" % (LETTER[c], counts[c]) for c in CLASSES if c in counts),
                sum(r["key_scan"] for r in seg), sum(r["map_restarted"] for r in seg), verr))
@@ -143,7 +144,8 @@ def main():
             eps.append((path, episodes(rows, args)))
     total = sum(a["scans"] for a in acc.values())
     print("%d trace(s), %d scans" % (len(paths), total))
-    print("| class | scans | share | error growth (m) | match / true along travel | filter / true | true distance (m) |")
+    print("| class | scans | share | error growth (m) | match / true along travel | filter / true | "
+          "true distance (m) |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
     for c in CLASSES:
         a = acc[c]
