@@ -33,6 +33,11 @@ struct PointVehicle {
   }
 };
 
+// Whatever the estimate, no NaN or infinity reaches the controller.
+bool finite(const GuidanceSetpoint& s) {
+  return s.position_m.allFinite() && s.velocity_mps.allFinite() && std::isfinite(s.heading_rad);
+}
+
 struct MissionRun {
   MissionController mc;
   PointVehicle v;
@@ -50,12 +55,26 @@ struct MissionRun {
     v.follow(s, kDt);
     return s;
   }
+  // One step on an estimate other than the vehicle's (an invalid or NaN one), stamped with the
+  // step's time so that only its content, not its age, is bad; the vehicle does not move.
+  GuidanceSetpoint step_on(NavState nav, const ExplorerOutput* e = nullptr) {
+    t += Duration::from_s(kDt);
+    nav.stamp = t;
+    return mc.step(t, nav, e);
+  }
   bool run_until(Phase p, float max_s, const ExplorerOutput* e = nullptr) {
     for (float s = 0; s < max_s; s += kDt) {
       step(e);
       if (mc.phase() == p) return true;
     }
     return false;
+  }
+  // A hover mission, `hover_s` at the set-point and default parameters otherwise, flown until
+  // it reaches phase p.
+  bool hover_until(Phase p, float max_s, float hover_s = MissionParams{}.hover_duration_s) {
+    MissionParams params;
+    params.hover_duration_s = hover_s;
+    return mc.configure(MissionKind::kHover, params) == Status::kOk && run_until(p, max_s);
   }
   struct Leg {
     Eigen::Vector3f velocity_mps;
@@ -134,7 +153,7 @@ TEST(MissionController, AStaleEstimateOnTheGroundStartsThePreflightAgain) {
     const GuidanceSetpoint s = r.step();
     EXPECT_EQ(r.mc.phase(), Phase::kIdle);
     EXPECT_FALSE(r.mc.wants_armed());
-    EXPECT_TRUE(s.position_m.allFinite());
+    EXPECT_TRUE(finite(s));
   }
   r.v.nav.valid = true;
   const TimeUs back = r.t + Duration::from_s(MissionRun::kDt);
@@ -491,8 +510,7 @@ TEST(MissionController, StalledBesideAJambTheTrailIsLaidBackOntoTheDoor) {
 
 TEST(MissionController, StaleEstimateTriggersFailsafeLanding) {
   MissionRun r;
-  ASSERT_EQ(r.mc.configure(MissionKind::kHover, {}), Status::kOk);
-  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  ASSERT_TRUE(r.hover_until(Phase::kHover, 10));
   r.v.nav.valid = false;
   ASSERT_TRUE(r.run_until(Phase::kFailsafeLand, 1.0f));
   const GuidanceSetpoint s = r.step();
@@ -503,15 +521,10 @@ TEST(MissionController, StaleEstimateTriggersFailsafeLanding) {
 
 TEST(MissionController, NaNEstimateIsTreatedAsInvalid) {
   MissionRun r;
-  ASSERT_EQ(r.mc.configure(MissionKind::kHover, {}), Status::kOk);
-  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  ASSERT_TRUE(r.hover_until(Phase::kHover, 10));
   r.v.nav.position_m.x() = std::nanf("");
   r.v.nav.velocity_mps.setZero();
-  for (int i = 0; i < 40; ++i) {
-    const GuidanceSetpoint s = r.mc.step(r.t += Duration::from_ms(25), r.v.nav, nullptr);
-    EXPECT_TRUE(std::isfinite(s.position_m.z()));
-    EXPECT_TRUE(std::isfinite(s.heading_rad));
-  }
+  for (int i = 0; i < 40; ++i) EXPECT_TRUE(finite(r.step_on(r.v.nav))) << "step " << i;
   EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
 }
 
@@ -522,15 +535,11 @@ TEST(MissionController, NaNEstimateIsTreatedAsInvalid) {
 // (later) steps and the hover ends on time.
 TEST(MissionController, ClockSteppingBackAnHourKeepsTheTimersAndTheFailsafe) {
   MissionRun r;
-  MissionParams p;
-  p.hover_duration_s = 2.0f;
-  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
-  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  ASSERT_TRUE(r.hover_until(Phase::kHover, 10, /*hover_s=*/2.0f));
   r.t = r.t - Duration::from_s(3600.0);
   EXPECT_TRUE(r.run_until(Phase::kLand, 2.5f));  // not an hour and two seconds
   MissionRun f;
-  ASSERT_EQ(f.mc.configure(MissionKind::kHover, {}), Status::kOk);
-  ASSERT_TRUE(f.run_until(Phase::kHover, 10));
+  ASSERT_TRUE(f.hover_until(Phase::kHover, 10));
   f.t = f.t - Duration::from_s(3600.0);
   f.v.nav.valid = false;
   EXPECT_TRUE(f.run_until(Phase::kFailsafeLand, 1.0f));
@@ -542,8 +551,7 @@ TEST(MissionController, ClockSteppingBackAnHourKeepsTheTimersAndTheFailsafe) {
 // descent continues from the height it had and ends on its own time.
 TEST(MissionController, ClockLeapingAnHourAheadDoesNotEndAPhaseAtOnce) {
   MissionRun r;
-  ASSERT_EQ(r.mc.configure(MissionKind::kHover, {}), Status::kOk);
-  ASSERT_TRUE(r.run_until(Phase::kHover, 10));
+  ASSERT_TRUE(r.hover_until(Phase::kHover, 10));
   r.v.nav.valid = false;
   r.t = r.t + Duration::from_s(3600.0);
   GuidanceSetpoint s = r.step();
@@ -572,10 +580,10 @@ TEST(MissionController, NonFiniteExplorerSetpointBecomesAHold) {
     if (field == 1) bad.setpoint.velocity_mps.y() = -inf;
     if (field == 2) bad.setpoint.heading_rad = nan;
     if (field == 3) bad.setpoint.position_m.x() = inf;
-    const GuidanceSetpoint s = r.mc.step(r.t += Duration::from_ms(25), r.v.nav, &bad);
+    const GuidanceSetpoint s = r.step_on(r.v.nav, &bad);
     EXPECT_EQ(s.mode, GuidanceSetpoint::Mode::kVelocity) << field;
     EXPECT_TRUE(s.velocity_mps.isZero()) << field;
-    EXPECT_TRUE(s.position_m.allFinite() && std::isfinite(s.heading_rad)) << field;
+    EXPECT_TRUE(finite(s)) << field;
     EXPECT_FLOAT_EQ(s.position_m.z(), MissionParams{}.takeoff_altitude_m);
     EXPECT_EQ(r.mc.phase(), Phase::kExplore);
   }
@@ -818,20 +826,13 @@ TEST(MissionController, RecordsWhenEachPhaseWasFirstEntered) {
 // hands the vehicle to the failsafe, which descends on its timer.
 TEST(MissionController, AnInvalidEstimateWhileLandingDoesNotCountAsTouchdown) {
   MissionRun r;
-  MissionParams p;
-  p.hover_duration_s = 1;
-  ASSERT_EQ(r.mc.configure(MissionKind::kHover, p), Status::kOk);
-  ASSERT_TRUE(r.run_until(Phase::kLand, 20));
+  ASSERT_TRUE(r.hover_until(Phase::kLand, 20, /*hover_s=*/1));
   ASSERT_GT(r.v.nav.position_m.z(), 0.8f);
   NavState zeros;  // what NavFilter::state() gives before it is initialised: invalid, at 0
-  zeros.stamp = r.t += Duration::from_ms(25);
-  (void)r.mc.step(r.t, zeros, nullptr);
+  (void)r.step_on(zeros);
   EXPECT_EQ(r.mc.phase(), Phase::kLand);
   EXPECT_TRUE(r.mc.wants_armed());
-  for (int i = 0; i < 40 && r.mc.phase() == Phase::kLand; ++i) {
-    zeros.stamp = r.t += Duration::from_ms(25);
-    (void)r.mc.step(r.t, zeros, nullptr);
-  }
+  for (int i = 0; i < 40 && r.mc.phase() == Phase::kLand; ++i) (void)r.step_on(zeros);
   EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
   EXPECT_TRUE(r.mc.wants_armed());
 }
@@ -847,10 +848,8 @@ TEST(MissionController, ANaNEstimateOnTheWayHomeGivesAFiniteSetpoint) {
   NavState nan_nav = r.v.nav;
   nan_nav.position_m.setConstant(std::nanf(""));
   for (int i = 0; i < 60; ++i) {
-    nan_nav.stamp = r.t += Duration::from_ms(25);
-    const GuidanceSetpoint s = r.mc.step(r.t, nan_nav, &e);
-    ASSERT_TRUE(s.position_m.allFinite()) << "step " << i << " in " << to_string(r.mc.phase());
-    ASSERT_TRUE(s.velocity_mps.allFinite()) << "step " << i;
+    const GuidanceSetpoint s = r.step_on(nan_nav, &e);
+    ASSERT_TRUE(finite(s)) << "step " << i << " in " << to_string(r.mc.phase());
     EXPECT_NEAR(s.position_m.x(), believed.x(), 1e-5f);
     EXPECT_NEAR(s.position_m.y(), believed.y(), 1e-5f);
   }
@@ -873,18 +872,13 @@ TEST(MissionController, ANaNEstimateAsExploringEndsLeavesNoNaNInTheFlightHome) {
   NavState nan_nav = r.v.nav;
   nan_nav.position_m.setConstant(std::nanf(""));
   nan_nav.heading_rad = std::nanf("");
-  nan_nav.stamp = r.t += Duration::from_ms(25);
-  const GuidanceSetpoint first = r.mc.step(r.t, nan_nav, &e);
+  const GuidanceSetpoint first = r.step_on(nan_nav, &e);
   ASSERT_EQ(r.mc.phase(), Phase::kReturn);
-  EXPECT_TRUE(first.position_m.allFinite());
-  EXPECT_TRUE(std::isfinite(first.heading_rad));
+  EXPECT_TRUE(finite(first));
   EXPECT_NEAR(first.position_m.x(), believed.x(), 0.02f);  // the last step's estimate, 25 ms before
   EXPECT_FLOAT_EQ(first.heading_rad, believed_heading);
   // The estimate back: the flight home's set-points stay finite all the way.
-  for (int i = 0; i < 400; ++i) {
-    const GuidanceSetpoint s = r.step(&e);
-    ASSERT_TRUE(s.position_m.allFinite() && s.velocity_mps.allFinite() && std::isfinite(s.heading_rad)) << i;
-  }
+  for (int i = 0; i < 400; ++i) ASSERT_TRUE(finite(r.step(&e))) << i;
 }
 
 TEST(MissionController, StepsDoNotAllocate) {
