@@ -104,12 +104,7 @@ int main(int argc, char** argv) {
   if (!args.ok()) return usage(args.error());
   if (out.empty()) return usage("--out is required");
   if (panels.empty()) return usage("no --panel");
-  // Checked before the records are read: the curves' samples would not fit in memory.
-  if (end > 0.0 && !(end / step <= metrics::kMaxCoverageSteps)) {
-    char msg[160];
-    std::snprintf(msg, sizeof msg, "--end %g / --step %g is more than %g steps", end, step, metrics::kMaxCoverageSteps);
-    return usage(msg);
-  }
+  const bool end_given = end > 0.0;
 
   // Read every record first: the time axis ends where the longest run ends (or at --end).
   std::vector<std::vector<std::vector<metrics::CoverageCurve>>> runs(panels.size());
@@ -136,15 +131,22 @@ int main(int argc, char** argv) {
       }
     }
   }
-  if (end <= 0.0) {
-    end = last_t > 0.0 ? last_t : 1.0;
-    if (!(end / step <= metrics::kMaxCoverageSteps)) {
-      std::fprintf(stderr,
-                   "kestrel-coverage-plot: the longest run ends at %g s, more than %g steps of %g s; "
-                   "give a shorter --end or a larger --step\n",
-                   end, metrics::kMaxCoverageSteps, step);
-      return 1;
+  if (!end_given) end = last_t > 0.0 ? last_t : 1.0;
+  // The one bound on the time axis's samples, however its end was set (mean_coverage refuses
+  // more too, but only as an invalid argument): a usage error when --end asked for them, a
+  // record's fault when the longest run's end did.
+  if (!(end / step <= metrics::kMaxCoverageSteps)) {
+    if (end_given) {
+      char msg[160];
+      std::snprintf(msg, sizeof msg, "--end %g / --step %g is more than %g steps", end, step,
+                    metrics::kMaxCoverageSteps);
+      return usage(msg);
     }
+    std::fprintf(stderr,
+                 "kestrel-coverage-plot: the longest run ends at %g s, more than %g steps of %g s; "
+                 "give a shorter --end or a larger --step\n",
+                 end, metrics::kMaxCoverageSteps, step);
+    return 1;
   }
 
   std::vector<output::Panel> plot;
