@@ -5,6 +5,7 @@
 #include "kestrel/sim/flight_recorder.hpp"
 #include "kestrel/sim/mission_registry.hpp"
 #include "kestrel/sim/mission_runner.hpp"
+#include "temp_file.hpp"
 
 namespace kestrel::sim {
 namespace {
@@ -43,6 +44,19 @@ TEST(CommandScript, TimesBeyondTheLongestFlightAreRefused) {
   EXPECT_EQ(s.parse("0 0 0 0.5 0\n1e13 5 0 0.5 0\n", "s.txt"), want);
   EXPECT_EQ(s.parse("0 0 0 0.5 0\ndisarm 1e300\n", "s.txt"), want);
   EXPECT_EQ(s.parse("0 0 0 0.5 0\ndisarm 1e6\n", "s.txt"), "");
+}
+
+// read_text hands the file over as it is (kestrel-sysid passes it on to be parsed once) and
+// refuses what load refuses: a file that will not open, a directory.
+TEST(CommandScript, ReadTextGivesTheFileOrWhyNot) {
+  const std::string path = test::write_temp_file("command_script_read.txt", "0 0 0 0.5 0\n# end\n");
+  std::string text;
+  EXPECT_EQ(CommandScript::read_text(path, text), "");
+  EXPECT_EQ(text, "0 0 0 0.5 0\n# end\n");
+  EXPECT_EQ(CommandScript::read_text("/nonexistent/script.txt", text),
+            "/nonexistent/script.txt: cannot open the command script");
+  const std::string dir = testing::TempDir();
+  EXPECT_EQ(CommandScript::read_text(dir, text), dir + ": cannot read (is a directory)");
 }
 
 TEST(ManualMission, DefaultScriptFliesDownTheArenaHallwayWithoutContact) {

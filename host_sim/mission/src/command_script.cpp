@@ -95,7 +95,7 @@ std::string CommandScript::parse(std::string_view text, std::string_view source_
   return {};
 }
 
-std::string CommandScript::load(const std::string& path) {
+std::string CommandScript::read_text(const std::string& path, std::string& text) {
   // A directory opens as a stream and then reads as empty: say so rather than parse nothing.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return path + ": cannot read (is a directory)";
@@ -103,7 +103,14 @@ std::string CommandScript::load(const std::string& path) {
   if (!in) return path + ": cannot open the command script";
   std::ostringstream ss;
   ss << in.rdbuf();
-  return parse(ss.str(), path);
+  text = ss.str();
+  return {};
+}
+
+std::string CommandScript::load(const std::string& path) {
+  std::string text;
+  if (std::string e = read_text(path, text); !e.empty()) return e;
+  return parse(text, path);
 }
 
 }  // namespace kestrel::sim

@@ -11,8 +11,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "kestrel/autonomy/stack_config.hpp"
@@ -121,16 +119,12 @@ int main(int argc, char** argv) {
     if (o.script.empty()) {
       spec.script_text = tuning::sysid_script_text();
     } else {
-      // Checked before flying, as kestrel-sim checks it: FILE:LINE, no commands, a directory.
-      sim::CommandScript script;
-      if (const std::string e = script.load(o.script); !e.empty()) {
+      // Read once, as kestrel-sim reads it (a directory refused); fly_and_record parses it
+      // before flying and names FILE:LINE, or the file when it has no commands.
+      if (const std::string e = sim::CommandScript::read_text(o.script, spec.script_text); !e.empty()) {
         std::fprintf(stderr, "kestrel-sysid: %s\n", e.c_str());
         return 1;
       }
-      std::ifstream in(o.script);
-      std::stringstream ss;
-      ss << in.rdbuf();
-      spec.script_text = ss.str();
       spec.script_name = o.script;
     }
     spec.duration_s = o.seconds > 0 ? o.seconds : 14;

@@ -30,7 +30,11 @@ struct CommandScript {
 
   // "" or "SOURCE:LINE: reason".
   std::string parse(std::string_view text, std::string_view source_name);
+  // read_text(path) then parse(text, path).
   std::string load(const std::string& path);
+  // The file's text, for a caller that passes it on rather than parse it here: "" or why it
+  // cannot be read (a directory is refused, not read as empty).
+  static std::string read_text(const std::string& path, std::string& text);
   // The default flight: take off to 1 m, fly down the iarc-arena hallway, turn, come back,
   // enter room C through its doorway, turn around and land. Open loop, so it is exact only
   // without gusts.
