@@ -56,7 +56,7 @@ TEST(CommandScript, ReadTextGivesTheFileOrWhyNot) {
   EXPECT_EQ(CommandScript::read_text("/nonexistent/script.txt", text),
             "/nonexistent/script.txt: cannot open the command script");
   const std::string dir = testing::TempDir();
-  EXPECT_EQ(CommandScript::read_text(dir, text), dir + ": cannot read (is a directory)");
+  EXPECT_EQ(CommandScript::read_text(dir, text), "cannot read '" + dir + "' (is a directory)");
 }
 
 TEST(ManualMission, DefaultScriptFliesDownTheArenaHallwayWithoutContact) {

@@ -282,11 +282,12 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
 }
 
 WorldParseResult load_world_file(const std::string& path) {
-  // A directory opens as a stream and then reads as empty: say so rather than parse nothing.
+  // A directory opens as a stream and then reads as empty: say so, in the words the parameter
+  // files' loader (modules/params) uses, rather than parse nothing.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     WorldParseResult r;
-    r.error = path + ": cannot read (is a directory)";
+    r.error = "cannot read '" + path + "' (is a directory)";
     return r;
   }
   std::ifstream in(path, std::ios::binary);
