@@ -236,7 +236,8 @@ TEST(Relocaliser, DeclinesReturnsWhereTheReferenceSawThrough) {
     for (const float dx : {0.0f, 0.3f}) {
       const Relocalisation fix = f.locate(truth, {truth.x + dx, truth.y + 0.03f, truth.theta});
       // A fifth of its returns there (right fixes: none, FindsTheShortLaser...).
-      EXPECT_EQ(fix.outcome, RelocaliseOutcome::kReturnsInFree) << heading << " " << dx << ": " << fix.pose.x << " " << fix.pose.y;
+      EXPECT_EQ(fix.outcome, RelocaliseOutcome::kReturnsInFree)
+          << heading << " " << dx << ": " << fix.pose.x << " " << fix.pose.y;
     }
   }
   // In the hallway, from where the window is in view, the right fix still comes.
