@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "glass_window_world.hpp"
 #include "synthetic_points.hpp"
 
 namespace kestrel::autonomy {
@@ -174,6 +175,33 @@ TEST(HomeFix, TwoFixesThatDisagreeConfirmNothing) {
   h.t = h.t + Duration::from_s(1.0);
   h.scan(truth, Pose2{-0.7f, 0.9f, 0.0f}.compose(truth), true);  // the estimate jumped (as if)
   EXPECT_EQ(h.fix->counters().found, 2u);
+  EXPECT_EQ(h.fix->counters().confirmed, 0u);
+  PoseMeasurement2 out;
+  EXPECT_FALSE(h.fix->take(out));
+}
+
+// The take-off turn beside a glass window, then, flying home, room A's west end facing the
+// hallway (glass_window_world.hpp): its scan fits the hallway's end 3 m north, save that it puts
+// a wall where the turn's beams passed through the window. The references carry their raw
+// scans, so that test sees it; without them (beams to returns only) a fix is confirmed.
+TEST(HomeFix, ConfirmsNoFixThatPutsWallsWhereTheTakeOffTurnSawThrough) {
+  Harness h;
+  h.world = test::glass_window_world();
+  const Pose2 home{2.0f, 7.5f, 0.0f};
+  for (int i = 0; i <= 20; ++i) {
+    const Pose2 turning{home.x, home.y, 0.35f * static_cast<float>(i)};
+    h.scan(turning, turning, false);
+  }
+  ASSERT_EQ(h.fix->counters().references, 6u);
+  h.t = h.t + Duration::from_s(h.config.reference_window_s);
+  Pose2 truth{1.34f, 4.3f, 1.5f};
+  for (int i = 0; i < 60; ++i) {
+    truth.y += 0.01f;  // slowly north, turning: new views
+    truth.theta += 0.006f;
+    h.scan(truth, {truth.x + 0.3f, truth.y + 0.03f, truth.theta}, true);
+  }
+  EXPECT_GE(h.fix->counters().searches, 5u);
+  EXPECT_GE(h.fix->counters().returns_in_free, 2u);
   EXPECT_EQ(h.fix->counters().confirmed, 0u);
   PoseMeasurement2 out;
   EXPECT_FALSE(h.fix->take(out));

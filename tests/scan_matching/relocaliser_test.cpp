@@ -9,6 +9,7 @@
 #include <span>
 
 #include "kestrel/core/prng.hpp"
+#include "glass_window_world.hpp"
 #include "synthetic_points.hpp"
 
 namespace kestrel::scan_matching {
@@ -221,23 +222,13 @@ TEST(Relocaliser, DeclinesAViewFromBehindAWallTheReferenceSaw) {
   }
 }
 
-// iarc-arena's west end: a hallway (y 6..9) whose north wall has a glass window (x 2..5) the
-// laser sees through, and room A south of it. Facing north a metre and a half from room A's
-// north wall, the vehicle sees that wall and the west wall, the hallway's end as the reference
-// saw it from home save the window. The best pose, in the hallway, fits (the window's cells
-// are empty, not wall, and the west wall and the wall west of the window fit) and sees through
-// nothing; but it puts returns where the reference's beams passed through the glass. (Flown:
-// two such fixes in a row agreed and moved the estimate 3 m north into the hallway.)
+// Room A's west end, facing the hallway (glass_window_world.hpp): the best pose, in the
+// hallway, fits (the window's cells are empty, not wall, and the west wall and the wall west of
+// the window fit) and sees through nothing; but it puts returns where the reference's beams
+// passed through the glass. (Flown: two such fixes in a row agreed and moved the estimate 3 m
+// north into the hallway.)
 TEST(Relocaliser, DeclinesReturnsWhereTheReferenceSawThrough) {
-  SegmentWorld w;
-  w.add(0, 0, 0, 15);    // west wall
-  w.add(0, 6, 6, 6);     // hallway south wall = room A's north wall, door 6..7.2
-  w.add(7.2, 6, 15, 6);
-  w.add(0, 9, 2, 9);     // hallway north wall, glass 2..5 (not drawn: the laser sees through)
-  w.add(5, 9, 9, 9);
-  w.add(0, 0, 15, 0);
-  w.add(0, 15, 15, 15);
-  Fixture f(w, LaserModel::urg04lx(), turn_at(2.0f, 7.5f));
+  Fixture f(test::glass_window_world(), LaserModel::urg04lx(), turn_at(2.0f, 7.5f));
   for (const float heading : {1.5f, 1.68f, 1.85f}) {
     const Pose2 truth{1.34f, 4.52f, heading};
     for (const float dx : {0.0f, 0.3f}) {
@@ -298,6 +289,35 @@ TEST(Relocaliser, RefusesBadInputWithAReason) {
   ScanPoints bad = pts;
   bad.x[3] = INFINITY;
   EXPECT_EQ(r.locate(bad, {0.3f, 0.0f, 0.0f}).outcome, RelocaliseOutcome::kBadInput);
+  // A reference a map away from the first could not be drawn, nor its beams walked in range;
+  // a point that is not finite has no beam to walk.
+  EXPECT_EQ(r.add_reference(pts, {1309.5f, 0.0f, 0.0f}), Status::kInvalidArgument);
+  EXPECT_EQ(r.add_reference(bad, {0.3f, 0.0f, 0.0f}), Status::kInvalidArgument);
+  bad.x[3] = NAN;
+  EXPECT_EQ(r.add_reference(bad, {0.3f, 0.0f, 0.0f}), Status::kInvalidArgument);
+  EXPECT_EQ(r.reference_count(), 1u);
+}
+
+// What the references saw free: the glass window and the hallway's open space, not its walls
+// nor beyond them; forgotten with the references when configured again (the window now a wall).
+TEST(Relocaliser, KeepsWhatItsReferencesSawFreeAndForgetsItWithThem) {
+  Fixture f(test::glass_window_world(), LaserModel::urg04lx(), turn_at(2.0f, 7.5f));
+  EXPECT_TRUE(f.r.seen_free(3.5f, 9.0f));   // the window
+  EXPECT_TRUE(f.r.seen_free(3.5f, 10.5f));  // room C behind it, within the laser's reach
+  EXPECT_TRUE(f.r.seen_free(2.5f, 7.0f));   // the hallway
+  EXPECT_FALSE(f.r.seen_free(1.0f, 9.0f));  // the wall west of the window
+  EXPECT_FALSE(f.r.seen_free(3.0f, 5.0f));  // room A, behind the hallway's wall
+  EXPECT_FALSE(f.r.seen_free(500.0f, 9.0f));
+  ASSERT_EQ(f.r.configure(RelocaliserParams{}, matcher_for(f.m)), Status::kOk);
+  EXPECT_FALSE(f.r.seen_free(3.5f, 9.0f));  // no reference: nothing seen
+  f.w.add(2, 9, 5, 9);
+  for (const Pose2& p : turn_at(2.0f, 7.5f)) {
+    const LaserScan raw = f.w.scan(f.m, p.x, p.y, p.theta);
+    ASSERT_EQ(f.r.add_reference(scan_points(f.w, f.m, p), p, &raw), Status::kOk);
+  }
+  EXPECT_FALSE(f.r.seen_free(3.5f, 9.0f));
+  EXPECT_FALSE(f.r.seen_free(3.5f, 10.5f));
+  EXPECT_TRUE(f.r.seen_free(2.5f, 7.0f));
 }
 
 }  // namespace

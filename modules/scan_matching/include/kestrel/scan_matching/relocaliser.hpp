@@ -12,7 +12,7 @@
 // The reference scans' contours (paper 000, 5.1.1) are drawn into a likelihood map of coarse
 // cells centred on the first one, and a scan is searched against it by the correlative
 // search's branch and bound (5.1.2) over +-window_m and +-window_rad around the caller's guess.
-// A fix is handed back only when three things hold:
+// A fix is handed back only when all of these hold:
 //   - the scan fits: its mean cell over the points the map can judge is min_score or more, on
 //     min_points points or more (4 m of laser seeing a wall the take-off scan did not see
 //     fits nothing, and is refused);
@@ -111,7 +111,8 @@ class Relocaliser {
   // forgets the reference.
   Status configure(const RelocaliserParams& p, const Params& matcher);
   // Draws one more reference scan: its returns (sensor frame) and the sensor's pose when it was
-  // taken. The first centres the map. kInvalidArgument for a pose that is not finite,
+  // taken. The first centres the map. kInvalidArgument for a pose that is not finite or (after
+  // the first) more than half the map from the first, or a point that is not finite;
   // kNoData for fewer than min_points returns, kCapacityExceeded after kMaxReferenceScans.
   // `scan`, the laser scan the points came from (optional), marks the space its beams that
   // found nothing crossed as seen free too (without it, only the beams to returns).
@@ -124,10 +125,14 @@ class Relocaliser {
   bool has_reference() const { return reference_count_ > 0; }
   std::size_t reference_count() const { return reference_count_; }
   const Pose2& reference_pose() const { return reference_pose_; }
+  // Whether a reference beam crossed the cell holding this world point (false off the map).
+  bool seen_free(float x_m, float y_m) const;
   const RelocaliserParams& params() const { return params_; }
   const LikelihoodMap& map() const { return map_; }
 
  private:
+  // Within half the map of the first reference: what the map and the integer walks can hold.
+  bool within_map(const Pose2& pose) const;
   float second_peak_ratio(const GridPose& best);
   float see_through_fraction(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) const;
   bool passes_a_wall(const Pose2& pose, float angle, float reach_m) const;
