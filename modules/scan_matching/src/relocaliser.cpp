@@ -150,23 +150,37 @@ float Relocaliser::see_through_fraction(const ScanPoints& pts, const LaserScan* 
   return walked > 0 ? static_cast<float>(through) / static_cast<float>(walked) : 0.0f;
 }
 
+bool Relocaliser::on_map(int x, int y) const {
+  return static_cast<unsigned>(x) < static_cast<unsigned>(map_.dim()) &&
+         static_cast<unsigned>(y) < static_cast<unsigned>(map_.dim());
+}
+
+std::size_t Relocaliser::cell_index(int x, int y) const {
+  return static_cast<std::size_t>(y) * static_cast<std::size_t>(map_.dim()) + static_cast<std::size_t>(x);
+}
+
+bool Relocaliser::cell_of(float x_m, float y_m, int& x, int& y) const {
+  const float inv = 1.0f / map_.resolution_m();
+  const float fx = std::floor((x_m - map_.origin_x_m()) * inv), fy = std::floor((y_m - map_.origin_y_m()) * inv);
+  const auto dim = static_cast<float>(map_.dim());
+  if (!(fx >= 0.0f && fx < dim && fy >= 0.0f && fy < dim)) return false;  // NaN too
+  x = static_cast<int>(fx);
+  y = static_cast<int>(fy);
+  return true;
+}
+
 void Relocaliser::mark_seen_free(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) {
-  const auto dim = static_cast<unsigned>(map_.dim());
   for_each_beam(pts, scan, pose, [&](float angle, float reach) {
     walk_cells(map_, pose, angle, reach, [&](int x, int y) {
-      if (static_cast<unsigned>(x) < dim && static_cast<unsigned>(y) < dim)
-        seen_free_[static_cast<std::size_t>(y) * dim + static_cast<unsigned>(x)] = true;
+      if (on_map(x, y)) seen_free_[cell_index(x, y)] = true;
       return false;
     });
   });
 }
 
 bool Relocaliser::seen_free(float x_m, float y_m) const {
-  const float inv = 1.0f / map_.resolution_m();
-  const float fx = std::floor((x_m - map_.origin_x_m()) * inv), fy = std::floor((y_m - map_.origin_y_m()) * inv);
-  const auto dim = static_cast<float>(map_.dim());
-  if (reference_count_ == 0 || !(fx >= 0.0f && fx < dim && fy >= 0.0f && fy < dim)) return false;
-  return seen_free_[static_cast<std::size_t>(fy) * map_.dim() + static_cast<std::size_t>(fx)];
+  int x = 0, y = 0;
+  return reference_count_ > 0 && cell_of(x_m, y_m, x, y) && seen_free_[cell_index(x, y)];
 }
 
 // Of the scan's returns placed at `pose`, the share in cells a reference beam crossed with no
@@ -174,17 +188,12 @@ bool Relocaliser::seen_free(float x_m, float y_m) const {
 // it, where the wall's own returns land.
 float Relocaliser::returns_in_free_fraction(const ScanPoints& pts, const Pose2& pose) const {
   if (pts.count == 0) return 0.0f;
-  const float inv = 1.0f / map_.resolution_m();
   const float c = std::cos(pose.theta), s = std::sin(pose.theta);
-  const auto dim = static_cast<unsigned>(map_.dim());
   int in_free = 0;
   for (uint16_t i = 0; i < pts.count; ++i) {
-    const float wx = pose.x + c * pts.x[i] - s * pts.y[i];
-    const float wy = pose.y + s * pts.x[i] + c * pts.y[i];
-    const auto x = static_cast<int>(std::floor((wx - map_.origin_x_m()) * inv));
-    const auto y = static_cast<int>(std::floor((wy - map_.origin_y_m()) * inv));
-    if (static_cast<unsigned>(x) >= dim || static_cast<unsigned>(y) >= dim || map_.at(x, y) != 0) continue;
-    if (seen_free_[static_cast<std::size_t>(y) * dim + static_cast<unsigned>(x)]) ++in_free;
+    int x = 0, y = 0;
+    if (!cell_of(pose.x + c * pts.x[i] - s * pts.y[i], pose.y + s * pts.x[i] + c * pts.y[i], x, y)) continue;
+    if (map_.at(x, y) == 0 && seen_free_[cell_index(x, y)]) ++in_free;
   }
   return static_cast<float>(in_free) / static_cast<float>(pts.count);
 }
