@@ -1,5 +1,6 @@
 // A device's stamps on the board's clock (core/device_clock.hpp): the quickest arrival sets
-// the offset, jitter does not move the stamps, and a device clock running slow is followed.
+// the offset, jitter does not move the stamps, a device clock running slow is followed, and so
+// is one stepped back, while late frames of a stall or a backlog keep their age.
 #include "kestrel/core/device_clock.hpp"
 
 #include <gtest/gtest.h>
@@ -83,7 +84,7 @@ TEST(DeviceClock, ALoneStampFromFarAheadIsRefusedARunOfThemReseeds) {
   EXPECT_FALSE(c.observe(TimeUs::from_us(0), TimeUs::from_us(INT64_MIN)));
   // The peer's clock steps 10 s ahead (a restart onto a clock set elsewhere): its first frames
   // are refused as lone ones were, and after a run of them it is followed again. (A step of
-  // less than kMaxJumpUs back is not told from late frames: the stamps look that much older.)
+  // less than kMaxJumpUs back: ADeviceClockSteppedBackIsFollowedWithinARun.)
   const int64_t restart = 5000 * i - 10'000'000;
   bool followed = false;
   for (int k = 0; k < DeviceClock::kReseedFrames + 5; ++k) {
@@ -93,6 +94,140 @@ TEST(DeviceClock, ALoneStampFromFarAheadIsRefusedARunOfThemReseeds) {
     ++i;
   }
   EXPECT_TRUE(followed);
+}
+
+// A device sending a frame every 25 ms (40 Hz) with 1-3 ms of link delay, the board up for an
+// hour. frame() sends the next one, `late_us` later than that delay, its stamp shifted by
+// `stamp_shift_us` (a device clock stepped), and says how much older its mapped stamp looks
+// than a frame of the least delay (1 ms) would: 0 for a right offset, negative for stamps that
+// look younger than they are, and never positive when the offset is the quickest frame's.
+struct Device40Hz {
+  DeviceClock c;
+  int64_t i = 0;
+  bool accepted = true;
+  int64_t frame(int64_t late_us = 0, int64_t stamp_shift_us = 0) {
+    const int64_t board_sent = 3'600'000'000 + i * 25'000;
+    const int64_t delay = 1000 + (i * 7919 % 2000) + late_us;
+    const TimeUs stamp = TimeUs::from_us(i * 25'000 + stamp_shift_us);
+    accepted = c.observe(stamp, TimeUs::from_us(board_sent + delay));
+    ++i;
+    return board_sent + 1000 - c.to_board(stamp).us;
+  }
+};
+
+// Review: a device clock stepped back by less than kMaxJumpUs was not told from late frames.
+// Every frame looked 300 ms late, the offset rose only by the drift allowance (25 minutes to
+// follow), and meanwhile every scan looked 300 ms older: stale to the flight home. Now a run of
+// kReseedFrames frames that late is a step, and the stamps are right again after it.
+TEST(DeviceClock, ADeviceClockSteppedBackIsFollowedWithinARun) {
+  Device40Hz d;
+  for (int k = 0; k < 200; ++k) d.frame();
+  const int64_t step_us = -300'000;  // the device's clock set back 300 ms
+  for (int k = 0; k < DeviceClock::kReseedFrames - 1; ++k) {
+    // Until the run is complete they are late frames, kept and mapped as they are.
+    EXPECT_NEAR(static_cast<double>(d.frame(0, step_us)), 300'000.0, 3000.0) << k;
+    EXPECT_TRUE(d.accepted);
+  }
+  for (int k = 0; k < 400; ++k) {
+    const int64_t lag = d.frame(0, step_us);
+    EXPECT_TRUE(d.accepted);
+    EXPECT_LE(lag, 0) << k;      // the quickest frame's offset, from the run's last frame on
+    EXPECT_GT(lag, -3000) << k;  // younger by no more than that frame's own 1-3 ms
+  }
+}
+
+// A stalled link: fewer frames than a run, all 300 ms late, then on time again; twice, so the
+// run starts afresh after an on-time frame. The late frames keep their age (mapped as they
+// are) and the offset does not move.
+TEST(DeviceClock, AStallShorterThanARunLeavesTheOffset) {
+  Device40Hz d;
+  for (int k = 0; k < 200; ++k) d.frame();
+  const int64_t settled = d.c.offset_us();
+  for (int stall = 0; stall < 2; ++stall) {
+    for (int k = 0; k < DeviceClock::kReseedFrames - 1; ++k) {
+      EXPECT_NEAR(static_cast<double>(d.frame(300'000)), 0.0, 3000.0) << stall << ' ' << k;
+      EXPECT_TRUE(d.accepted);
+    }
+    EXPECT_NEAR(static_cast<double>(d.frame()), 0.0, 3000.0) << stall;
+  }
+  // Within what the drift allowance leaks over each 1 s stall (200 us) and the jitter.
+  EXPECT_NEAR(static_cast<double>(d.c.offset_us()), static_cast<double>(settled), 1000.0);
+}
+
+// Frames late by less than kStepUs, however many, are jitter: the offset stays the quickest
+// frame's. A delay raised to just under the threshold for ten runs, then delays spread up to
+// it, then frames alternately on time and 100 ms late: none of them is a step.
+TEST(DeviceClock, JitterBelowTheStepDoesNotReseed) {
+  Device40Hz d;
+  for (int k = 0; k < 200; ++k) d.frame();
+  const int64_t settled = d.c.offset_us();
+  const int64_t under = DeviceClock::kStepUs - 5000;  // with the 1-3 ms delay, under kStepUs late
+  for (int k = 0; k < 10 * DeviceClock::kReseedFrames; ++k) {
+    EXPECT_NEAR(static_cast<double>(d.frame(under)), 0.0, 3000.0) << k;  // mapped as they are
+  }
+  for (int k = 0; k < 10 * DeviceClock::kReseedFrames; ++k) (void)d.frame(k * 7907 % under);
+  for (int k = 0; k < 10 * DeviceClock::kReseedFrames; ++k) (void)d.frame(k % 2 == 0 ? 0 : 100'000);
+  // The raised delay's 10 s leaked 2 ms; the quicker frames after it took that back.
+  EXPECT_NEAR(static_cast<double>(d.c.offset_us()), static_cast<double>(settled), 1000.0);
+  EXPECT_NEAR(static_cast<double>(d.frame()), 0.0, 3000.0);
+}
+
+// The trade (device_clock.hpp): a link whose delay rose by more than kStepUs for a whole run is
+// taken for a stepped clock. Its stamps are then mapped onto their arrival, 50 ms younger than
+// they are, until the delay falls; the first quicker frame takes the offset back down.
+TEST(DeviceClock, ALinkWhoseDelayRoseForARunIsTakenForAStepUntilItFalls) {
+  Device40Hz d;
+  for (int k = 0; k < 200; ++k) d.frame();
+  for (int k = 0; k < DeviceClock::kReseedFrames - 1; ++k) {
+    EXPECT_NEAR(static_cast<double>(d.frame(50'000)), 0.0, 3000.0) << k;
+  }
+  for (int k = 0; k < 200; ++k) EXPECT_NEAR(static_cast<double>(d.frame(50'000)), -50'000.0, 3000.0) << k;
+  EXPECT_NEAR(static_cast<double>(d.frame()), 0.0, 3000.0);
+}
+
+// A backlog arrives at once, its oldest frame latest, its newest (here 3 ms in transit, 2 ms
+// more than the least delay) least late. A stall shorter than a run's worth of late frames
+// leaves the offset alone. A longer one (1.5 s: more than kReseedFrames of its frames are later
+// than kStepUs, fewer than kMaxJumpUs) ends a run on its way in, and its newer frames, each
+// less late, take the offset down again: once all of it is observed, its stamps keep their
+// spacing and look younger only by the newest frame's extra 2 ms, and the next quicker frame
+// takes that back.
+TEST(DeviceClock, ABacklogIsMappedAfterItIsObserved) {
+  for (const int64_t stall_frames : {int64_t{DeviceClock::kReseedFrames / 2}, int64_t{60}}) {
+    const bool long_stall = stall_frames > DeviceClock::kReseedFrames;
+    DeviceClock c;
+    const int64_t board0 = 3'600'000'000;
+    int64_t i = 0;
+    for (; i < 200; ++i) c.observe(TimeUs::from_us(i * 25'000), TimeUs::from_us(board0 + i * 25'000 + 1000));
+    const int64_t first = i;
+    const TimeUs drained = TimeUs::from_us(board0 + (first + stall_frames) * 25'000 + 3000);
+    for (; i <= first + stall_frames; ++i) EXPECT_TRUE(c.observe(TimeUs::from_us(i * 25'000), drained));
+    for (int64_t k = first; k <= first + stall_frames; ++k) {
+      const int64_t lag = board0 + k * 25'000 + 1000 - c.to_board(TimeUs::from_us(k * 25'000)).us;
+      // The short stall's 0.5 s leaked 100 us; the long one's newest frame set the offset.
+      EXPECT_NEAR(static_cast<double>(lag), long_stall ? -2000.0 : -100.0, 50.0) << stall_frames << ' ' << k;
+    }
+    const TimeUs quick = TimeUs::from_us(board0 + i * 25'000 + 500);  // 0.5 ms of delay
+    c.observe(TimeUs::from_us(i * 25'000), quick);
+    EXPECT_EQ(c.to_board(TimeUs::from_us(i * 25'000)), quick) << stall_frames;
+  }
+}
+
+// A device clock slower than the drift allowance covers: the leak falls behind, its frames
+// look ever later, and a run of them later than kStepUs takes the offset afresh. At 1000 ppm
+// slow for 10 minutes its stamps stay within about kStepUs; before, they fell behind by the
+// 800 ppm the leak missed, 480 ms by the end, until at 1 s the far run took them afresh.
+TEST(DeviceClock, ADeviceClockSlowerThanTheAllowanceIsFollowedWithinAStep) {
+  DeviceClock c;
+  int64_t worst_lag_us = 0;
+  for (int64_t i = 0; i < 10 * 60 * 40; ++i) {
+    const int64_t board_sent = 3'600'000'000 + i * 25'000;
+    const int64_t stamp = i * 25'000 - i * 25;  // 1000 ppm slow
+    const int64_t delay = 1000 + (i * 7919 % 2000);
+    c.observe(TimeUs::from_us(stamp), TimeUs::from_us(board_sent + delay));
+    worst_lag_us = std::max(worst_lag_us, board_sent + 1000 - c.to_board(TimeUs::from_us(stamp)).us);
+  }
+  EXPECT_LT(worst_lag_us, DeviceClock::kStepUs + 5000);
 }
 
 }  // namespace

@@ -21,6 +21,26 @@
 // stepped: the offset is taken afresh from them. Stamps beyond +-2^62 us are refused outright
 // (the differences below stay within 64 bits).
 //
+// A frame later than the offset says is mapped as it is: a stalled link's frame, or an old one
+// of a drained backlog, is that old. But a device clock stepped back by less than kMaxJumpUs
+// makes every later frame look late by the step, and the leak would follow it only at
+// kDriftAllowancePpm (25 minutes for 300 ms), every scan looking that much older meanwhile. So
+// a run of kReseedFrames frames all later than the offset by more than kStepUs is a stepped
+// clock too, and the offset is taken afresh from the frame that ends the run, as for the far
+// run; the quicker frames after it take it down to their least delay again. A stall of fewer
+// frames leaves the offset alone, and so does jitter below kStepUs, however long. A device
+// clock slower than the allowance covers is followed the same way, within about kStepUs.
+//  - What is traded: a link whose delay rose by more than kStepUs for a whole run (a congested
+//    network) is taken for a step. Until its delay falls again (the first quicker frame takes
+//    the offset back down) its stamps are mapped onto their arrival, younger by the extra delay
+//    than they are, where before they kept their true age (and scans that old were refused as
+//    stale, rightly).
+//  - A backlog arrives at once, its oldest frame latest and its newest least late. One from a
+//    stall longer than kStepUs plus kReseedFrames frame periods ends such a run on its way in;
+//    its newer frames then take the offset down again, so once the whole backlog is observed
+//    (see below) the offset is its newest frame's: its stamps look younger by that frame's own
+//    delay (within about a frame period) until the next quicker frame.
+//
 // A driver that queues frames maps them as they are read out, after a whole backlog has been
 // observed: mapped as each arrived, a backlog's stamps would close up onto its last (all
 // arrived at once, each the quickest yet).
@@ -35,6 +55,13 @@ class DeviceClock {
   static constexpr int64_t kDriftAllowancePpm = 200;
   static constexpr int64_t kMaxJumpUs = 1'000'000;
   static constexpr int kReseedFrames = 40;
+  // Why 30 ms: a whole run of frames held back longer than this is no link's jitter. The loop
+  // reads the links every millisecond, an FTDI-style USB serial adapter holds bytes up to 16 ms
+  // by default, and the Overo's whole loop budget is 12.5 ms; the Verdex's 50 ms per scan holds
+  // back only the frames that arrive during it, a backlog shorter than a run. Nor can it be
+  // much larger: a step just under it stays (the leak takes 150 s over 30 ms), and a UTM-30LX
+  // scan, most of its 25 ms period old when it is used, is stale at 75 ms.
+  static constexpr int64_t kStepUs = 30'000;
 
   // A frame stamped `stamp` on the device's clock arrived at `arrival` on the board's. False
   // for a stamp refused (see above): the frame's stamp, and so the frame, cannot be trusted.
@@ -51,9 +78,11 @@ class DeviceClock {
       }
       const bool far = offset < offset_us_ - kMaxJumpUs || offset > offset_us_ + kMaxJumpUs;
       far_run_ = far ? far_run_ + 1 : 0;
-      if (far_run_ >= kReseedFrames) {
+      late_run_ = offset > offset_us_ + kStepUs ? late_run_ + 1 : 0;
+      if (far_run_ >= kReseedFrames || late_run_ >= kReseedFrames) {
         known_ = false;  // the device's clock restarted or stepped: start again from this frame
         far_run_ = 0;
+        late_run_ = 0;
       } else if (offset < offset_us_ - kMaxJumpUs) {
         return false;  // a lone stamp from far ahead
       }
@@ -75,6 +104,7 @@ class DeviceClock {
   int64_t last_arrival_us_ = 0;
   int64_t leak_ppm_us_ = 0;  // leak not yet a whole microsecond, in ppm x us
   int far_run_ = 0;          // frames in a row more than kMaxJumpUs off the offset
+  int late_run_ = 0;         // frames in a row later than the offset by more than kStepUs
 };
 
 }  // namespace kestrel
