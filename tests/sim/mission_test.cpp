@@ -54,7 +54,7 @@ TEST(CommandScript, ReadTextGivesTheFileOrWhyNot) {
   EXPECT_EQ(CommandScript::read_text(path, text), "");
   EXPECT_EQ(text, "0 0 0 0.5 0\n# end\n");
   EXPECT_EQ(CommandScript::read_text("/nonexistent/script.txt", text),
-            "/nonexistent/script.txt: cannot open the command script");
+            "cannot open '/nonexistent/script.txt'");
   const std::string dir = testing::TempDir();
   EXPECT_EQ(CommandScript::read_text(dir, text), "cannot read '" + dir + "' (is a directory)");
 }

@@ -96,12 +96,13 @@ std::string CommandScript::parse(std::string_view text, std::string_view source_
 }
 
 std::string CommandScript::read_text(const std::string& path, std::string& text) {
-  // A directory opens as a stream and then reads as empty: say so, in the words the parameter
-  // files' loader (modules/params) uses, rather than parse nothing.
+  // A directory opens as a stream and then reads as empty: say so rather than parse nothing.
+  // Both refusals are in the words the parameter files' loader (modules/params) uses; the
+  // callers print them as they are, and the path says which of their files it was.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return "cannot read '" + path + "' (is a directory)";
   std::ifstream in(path, std::ios::binary);
-  if (!in) return path + ": cannot open the command script";
+  if (!in) return "cannot open '" + path + "'";
   std::ostringstream ss;
   ss << in.rdbuf();
   text = ss.str();

@@ -51,12 +51,13 @@ std::string ConfigFile::parse(std::string_view text, std::string_view source_nam
 }
 
 std::string ConfigFile::load(const std::string& path) {
-  // A directory opens as a stream and then reads as empty: say so, in the words the parameter
-  // files' loader (modules/params) uses, rather than parse nothing.
+  // A directory opens as a stream and then reads as empty: say so rather than parse nothing.
+  // Both refusals are in the words the parameter files' loader (modules/params) uses; the
+  // callers print them as they are, and the path says which of their files it was.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return "cannot read '" + path + "' (is a directory)";
   std::ifstream in(path, std::ios::binary);
-  if (!in) return path + ": cannot open the configuration file";
+  if (!in) return "cannot open '" + path + "'";
   std::ostringstream ss;
   ss << in.rdbuf();
   return parse(ss.str(), path);

@@ -282,8 +282,9 @@ WorldParseResult parse_world(std::string_view text, std::string_view source_name
 }
 
 WorldParseResult load_world_file(const std::string& path) {
-  // A directory opens as a stream and then reads as empty: say so, in the words the parameter
-  // files' loader (modules/params) uses, rather than parse nothing.
+  // A directory opens as a stream and then reads as empty: say so rather than parse nothing.
+  // Both refusals are in the words the parameter files' loader (modules/params) uses; the
+  // callers print them as they are, and the path says which of their files it was.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     WorldParseResult r;
@@ -293,7 +294,7 @@ WorldParseResult load_world_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     WorldParseResult r;
-    r.error = path + ": cannot open the world file";
+    r.error = "cannot open '" + path + "'";
     return r;
   }
   std::ostringstream ss;
