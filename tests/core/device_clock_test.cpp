@@ -1,6 +1,6 @@
 // A device's stamps on the board's clock (core/device_clock.hpp): the quickest arrival sets
 // the offset, jitter does not move the stamps, a device clock running slow is followed, and so
-// is one stepped back, while late frames of a stall or a backlog keep their age.
+// is one stepped back, while late frames of a stall, a backlog or a growing queue keep their age.
 #include "kestrel/core/device_clock.hpp"
 
 #include <gtest/gtest.h>
@@ -187,11 +187,10 @@ TEST(DeviceClock, ALinkWhoseDelayRoseForARunIsTakenForAStepUntilItFalls) {
 
 // A backlog arrives at once, its oldest frame latest, its newest (here 3 ms in transit, 2 ms
 // more than the least delay) least late. A stall shorter than a run's worth of late frames
-// leaves the offset alone. A longer one (1.5 s: more than kReseedFrames of its frames are later
-// than kStepUs, fewer than kMaxJumpUs) ends a run on its way in, and its newer frames, each
-// less late, take the offset down again: once all of it is observed, its stamps keep their
-// spacing and look younger only by the newest frame's extra 2 ms, and the next quicker frame
-// takes that back.
+// leaves the offset alone. So does a longer one (1.5 s: 61 frames later than kStepUs, 21 of
+// them later than kMaxJumpUs, too few for the far run): its delay falls 25 ms a frame, no
+// step's one delay. Every frame keeps its age, less only what the drift allowance leaked over
+// the stall (100 and 300 us), and the next quicker frame sets the offset.
 TEST(DeviceClock, ABacklogIsMappedAfterItIsObserved) {
   for (const int64_t stall_frames : {int64_t{DeviceClock::kReseedFrames / 2}, int64_t{60}}) {
     const bool long_stall = stall_frames > DeviceClock::kReseedFrames;
@@ -204,13 +203,49 @@ TEST(DeviceClock, ABacklogIsMappedAfterItIsObserved) {
     for (; i <= first + stall_frames; ++i) EXPECT_TRUE(c.observe(TimeUs::from_us(i * 25'000), drained));
     for (int64_t k = first; k <= first + stall_frames; ++k) {
       const int64_t lag = board0 + k * 25'000 + 1000 - c.to_board(TimeUs::from_us(k * 25'000)).us;
-      // The short stall's 0.5 s leaked 100 us; the long one's newest frame set the offset.
-      EXPECT_NEAR(static_cast<double>(lag), long_stall ? -2000.0 : -100.0, 50.0) << stall_frames << ' ' << k;
+      EXPECT_NEAR(static_cast<double>(lag), long_stall ? -300.0 : -100.0, 50.0) << stall_frames << ' ' << k;
     }
     const TimeUs quick = TimeUs::from_us(board0 + i * 25'000 + 500);  // 0.5 ms of delay
     c.observe(TimeUs::from_us(i * 25'000), quick);
     EXPECT_EQ(c.to_board(TimeUs::from_us(i * 25'000)), quick) << stall_frames;
   }
+}
+
+// The board reading slower than the device sends: each frame 1 ms later than the one before
+// (4 % of the time at 40 Hz). Its frames are later than kStepUs by the 31st, in runs of
+// kReseedFrames, but their delay rises 20 ms over each half run: no step. Every scan keeps its
+// true age, so the flight sees them stale; taken for a step, they would look at most one run's
+// growth old, however far behind the board fell.
+TEST(DeviceClock, AQueueGrowingBehindTheBoardIsNoStep) {
+  Device40Hz d;
+  for (int k = 0; k < 200; ++k) d.frame();
+  for (int64_t k = 1; k <= 400; ++k) {
+    const int64_t lag = d.frame(k * 1000);
+    EXPECT_TRUE(d.accepted);
+    // Mapped as it is, its true age: off only by the allowance's leak (2 ms in 10 s).
+    EXPECT_NEAR(static_cast<double>(lag), 0.0, 3000.0) << k;
+  }
+}
+
+// Review: a refused frame (a stamp from far ahead) leaked the time since the last accepted one
+// again, so a burst of them raised the offset by the sum of those times (3.9 ms for 39 at
+// 40 Hz, against 0.2 ms of allowance), and it broke a late run, so one corrupted frame during
+// a step put the step's detection back by a whole run.
+TEST(DeviceClock, ARefusedFrameLeaksOnceAndDoesNotBreakALateRun) {
+  Device40Hz d;
+  for (int k = 0; k < 200; ++k) d.frame();
+  const int64_t settled = d.c.offset_us();
+  for (int k = 0; k < DeviceClock::kReseedFrames - 1; ++k) {
+    (void)d.frame(0, 5'000'000);  // stamped 5 s ahead: refused
+    EXPECT_FALSE(d.accepted);
+  }
+  EXPECT_LT(d.c.offset_us() - settled, 400);  // 39 x 25 ms x 200 ppm = 195 us
+  const int64_t step_us = -300'000;
+  for (int k = 0; k < DeviceClock::kReseedFrames / 2; ++k) (void)d.frame(0, step_us);
+  (void)d.frame(0, 5'000'000);
+  EXPECT_FALSE(d.accepted);
+  for (int k = 0; k < DeviceClock::kReseedFrames / 2; ++k) (void)d.frame(0, step_us);
+  EXPECT_LE(d.frame(0, step_us), 0);  // followed: the run ended at its 40th late frame
 }
 
 // A device clock slower than the drift allowance covers: the leak falls behind, its frames

@@ -24,26 +24,25 @@
 // A frame later than the offset says is mapped as it is: a stalled link's frame, or an old one
 // of a drained backlog, is that old. But a device clock stepped back by less than kMaxJumpUs
 // makes every later frame look late by the step, and the leak would follow it only at
-// kDriftAllowancePpm (25 minutes for 300 ms), every scan looking that much older meanwhile. So
-// a run of kReseedFrames frames all later than the offset by more than kStepUs is a stepped
-// clock too, and the offset is taken afresh from the frame that ends the run, as for the far
-// run; the quicker frames after it take it down to their least delay again. A stall of fewer
-// frames leaves the offset alone, and so does jitter below kStepUs, however long. A device
-// clock slower than the allowance covers is followed the same way, within about kStepUs.
-//  - What is traded: a link whose delay rose by more than kStepUs for a whole run (a congested
-//    network) is taken for a step. Until its delay falls again (the first quicker frame takes
-//    the offset back down) its stamps are mapped onto their arrival, younger by the extra delay
-//    than they are, where before they kept their true age (and scans that old were refused as
-//    stale, rightly).
-//  - A backlog arrives at once, its oldest frame latest and its newest least late. One from a
-//    stall longer than kStepUs plus kReseedFrames frame periods ends such a run on its way in;
-//    its newer frames then take the offset down again, so once the whole backlog is observed
-//    (see below) the offset is its newest frame's: its stamps look younger by that frame's own
-//    delay (within about a frame period) until the next quicker frame.
+// kDriftAllowancePpm (25 minutes for 300 ms), every scan looking that much older meanwhile. A
+// step keeps one delay: so a run of kReseedFrames frames all later than the offset by more than
+// kStepUs, whose least offsets in its first and second halves agree within kStepFlatUs, is a
+// stepped clock too, and the offset is taken afresh as the run's least. A stall of fewer frames
+// leaves the offset alone, and so does jitter below kStepUs, however long. A delay that keeps
+// changing over the run is no step and its frames keep their true age: a draining backlog (its
+// oldest frame latest), or a queue growing because the board reads slower than the device
+// sends, whose scans must look as stale as they are. A device clock slower than the allowance
+// covers is followed within about kStepUs, 30 ms at a time.
+//  - What is traded: a link whose delay rose by more than kStepUs and stayed for a whole run
+//    (a congested network), or rises by less than kStepFlatUs per half run (under 1 % of the
+//    time at 40 Hz), is taken for a stepped or slow clock. Until its delay falls again (the
+//    first quicker frame takes the offset back down) its stamps are mapped younger by the extra
+//    delay than they are, where before they kept their true age.
 //
 // A driver that queues frames maps them as they are read out, after a whole backlog has been
 // observed: mapped as each arrived, a backlog's stamps would close up onto its last (all
 // arrived at once, each the quickest yet).
+#include <algorithm>
 #include <cstdint>
 
 #include "kestrel/core/time.hpp"
@@ -62,6 +61,9 @@ class DeviceClock {
   // much larger: a step just under it stays (the leak takes 150 s over 30 ms), and a UTM-30LX
   // scan, most of its 25 ms period old when it is used, is stale at 75 ms.
   static constexpr int64_t kStepUs = 30'000;
+  // A stepped clock's frames keep one delay but for the link's jitter, whose least value over
+  // half a run (20 frames) hardly moves; a draining backlog moves 25 ms a frame.
+  static constexpr int64_t kStepFlatUs = 5'000;
 
   // A frame stamped `stamp` on the device's clock arrived at `arrival` on the board's. False
   // for a stamp refused (see above): the frame's stamp, and so the frame, cannot be trusted.
@@ -75,16 +77,19 @@ class DeviceClock {
         leak_ppm_us_ += (arrival.us - last_arrival_us_) * kDriftAllowancePpm;
         offset_us_ += leak_ppm_us_ / 1'000'000;
         leak_ppm_us_ %= 1'000'000;
+        last_arrival_us_ = arrival.us;  // a refused frame's interval must not leak twice
       }
-      const bool far = offset < offset_us_ - kMaxJumpUs || offset > offset_us_ + kMaxJumpUs;
-      far_run_ = far ? far_run_ + 1 : 0;
-      late_run_ = offset > offset_us_ + kStepUs ? late_run_ + 1 : 0;
-      if (far_run_ >= kReseedFrames || late_run_ >= kReseedFrames) {
+      const bool ahead = offset < offset_us_ - kMaxJumpUs;
+      far_run_ = ahead || offset > offset_us_ + kMaxJumpUs ? far_run_ + 1 : 0;
+      if (far_run_ >= kReseedFrames) {
         known_ = false;  // the device's clock restarted or stepped: start again from this frame
         far_run_ = 0;
         late_run_ = 0;
-      } else if (offset < offset_us_ - kMaxJumpUs) {
+      } else if (ahead) {
         return false;  // a lone stamp from far ahead
+      } else if (ends_a_step(offset)) {
+        offset_us_ = std::min(half_min_[0], half_min_[1]);
+        far_run_ = 0;
       }
       // A lone frame far behind is a late one (a stalled link): its stamp is mapped as it is.
     }
@@ -105,6 +110,22 @@ class DeviceClock {
   int64_t leak_ppm_us_ = 0;  // leak not yet a whole microsecond, in ppm x us
   int far_run_ = 0;          // frames in a row more than kMaxJumpUs off the offset
   int late_run_ = 0;         // frames in a row later than the offset by more than kStepUs
+  int64_t half_min_[2] = {0, 0};  // the least offset in each half of that run
+
+  // Counts the late run; true when it completes with one delay (a stepped clock).
+  bool ends_a_step(int64_t offset) {
+    if (!(offset > offset_us_ + kStepUs)) {
+      late_run_ = 0;
+      return false;
+    }
+    const int half = late_run_ < kReseedFrames / 2 ? 0 : 1;
+    const bool first_of_half = late_run_ == 0 || late_run_ == kReseedFrames / 2;
+    half_min_[half] = first_of_half ? offset : std::min(half_min_[half], offset);
+    if (++late_run_ < kReseedFrames) return false;
+    late_run_ = 0;
+    const int64_t moved = half_min_[1] - half_min_[0];
+    return moved <= kStepFlatUs && moved >= -kStepFlatUs;
+  }
 };
 
 }  // namespace kestrel
