@@ -93,6 +93,27 @@ TEST(EkfParams, LoadsAFileAndReportsAMissingOne) {
   std::remove(path.c_str());
 }
 
+// Every tool prints a parameter file's error in these words: a line's error with its line, a
+// file that will not open once, not "PATH:0: cannot open 'PATH'", and an inconsistent set (no
+// line, no path in its message) with the path that says which file.
+TEST(EkfParams, ErrorsAreDescribedWithThePathOnce) {
+  char buf[256];
+  params::ParamError err;
+  EkfParams p;
+  ASSERT_EQ(load_ekf_params("/nonexistent/ekf.params", p, err), Status::kIoError);
+  params::describe("/nonexistent/ekf.params", err, buf, sizeof(buf));
+  EXPECT_STREQ(buf, "cannot open '/nonexistent/ekf.params'");
+  err.line = 3;
+  std::snprintf(err.message, sizeof(err.message), "unknown key 'x'");
+  params::describe("a.params", err, buf, sizeof(buf));
+  EXPECT_STREQ(buf, "a.params:3: unknown key 'x'");
+  err.line = 0;
+  params::describe("a.params", err, buf, sizeof(buf));
+  EXPECT_STREQ(buf, "a.params: unknown key 'x'");
+  EXPECT_EQ(params::describe("a.params", err, buf, 4), 25);  // truncated, as snprintf
+  EXPECT_STREQ(buf, "a.p");
+}
+
 // Regression: a directory opens for reading and then fails to read, and that read error was not
 // checked, so --ekf /tmp (and every parameter file option) ran on the defaults.
 TEST(EkfParams, ADirectoryIsNotAParameterFile) {

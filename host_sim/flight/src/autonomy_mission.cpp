@@ -35,6 +35,13 @@ class AutonomyMission::RealClock final : public TimeSource {
 
 namespace {
 
+// A parameter file's error in the words every tool uses (params::describe).
+std::string param_error_text(const std::string& path, const params::ParamError& err) {
+  char buf[512];
+  params::describe(path.c_str(), err, buf, sizeof(buf));
+  return buf;
+}
+
 // The SRT-Star tree (paper 002 Figure 5): safe regions as light sector fans, nodes and their
 // parent links, frontiers as crosses, the current waypoint as a ring.
 void draw_srt_tree(const exploration::SrtStarPlanner& planner, output::Canvas& c) {
@@ -295,7 +302,7 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       // Checked here, loaded by start() over the laser's defaults.
       params::ParamError err;
       if (estimation::load_ekf_params(value.c_str(), out.stack.ekf, err) != Status::kOk)
-        return value + ":" + std::to_string(err.line) + ": " + err.message;
+        return param_error_text(value, err);
       out.ekf_file = value;
     } else if (key == "slam") {
       // on, off, or a parameter file (modules/slam/include/kestrel/slam/slam_params.hpp) that
@@ -305,13 +312,13 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       } else {
         params::ParamError err;
         if (slam::load_slam_params(value.c_str(), out.stack.slam, err) != Status::kOk)
-          return value + ":" + std::to_string(err.line) + ": " + err.message;
+          return param_error_text(value, err);
         out.slam_on = true;
       }
     } else if (key == "controller") {
       params::ParamError err;
       if (control::load_controller_params(value.c_str(), out.stack.controller, err) != Status::kOk)
-        return value + ":" + std::to_string(err.line) + ": " + err.message;
+        return param_error_text(value, err);
     } else {
       return std::string("mission '") + mission_name + "' has no option '" + key + "'";
     }
@@ -344,7 +351,7 @@ Status AutonomyMission::start(sim::Simulation& sim) {
     params::ParamError err;
     if (!options_.ekf_file.empty() &&
         estimation::load_ekf_params(options_.ekf_file.c_str(), cfg.ekf, err) != Status::kOk) {
-      failure_ = options_.ekf_file + ":" + std::to_string(err.line) + ": " + err.message;
+      failure_ = param_error_text(options_.ekf_file, err);
       return Status::kInvalidArgument;
     }
   }

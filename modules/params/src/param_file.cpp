@@ -25,6 +25,14 @@ Status fail(ParamError& error, int line, Status status, const char* fmt, std::st
 
 }  // namespace
 
+int describe(const char* path, const ParamError& error, char* buf, std::size_t cap) {
+  if (error.line > 0) return std::snprintf(buf, cap, "%s:%d: %s", path, error.line, error.message);
+  if (path[0] != '\0' && std::strstr(error.message, path) != nullptr) {
+    return std::snprintf(buf, cap, "%s", error.message);
+  }
+  return std::snprintf(buf, cap, "%s: %s", path, error.message);
+}
+
 Status parse_params(std::string_view text, std::span<const ParamField> fields, ParamError& error) {
   error = ParamError{};
   if (fields.size() > kMaxParamFields) {

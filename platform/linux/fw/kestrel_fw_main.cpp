@@ -37,6 +37,12 @@ using namespace kestrel;
 std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop.store(true); }
 
+void print_param_error(const std::string& path, const params::ParamError& err) {
+  char buf[512];
+  params::describe(path.c_str(), err, buf, sizeof(buf));
+  std::fprintf(stderr, "kestrel-fw: %s\n", buf);
+}
+
 struct Options {
   std::string hil;         // HOST:PORT
   std::string hil_host;    // its parts, checked by parse()
@@ -188,12 +194,12 @@ int main(int argc, char** argv) {
   cfg.slam_enabled = opt.slam == "laser" ? autonomy::vehicle_slam_enabled(model.max_range_mm) : opt.slam == "on";
   params::ParamError perr;
   if (!opt.ekf_file.empty() && estimation::load_ekf_params(opt.ekf_file.c_str(), cfg.ekf, perr) != Status::kOk) {
-    std::fprintf(stderr, "kestrel-fw: %s:%d: %s\n", opt.ekf_file.c_str(), perr.line, perr.message);
+    print_param_error(opt.ekf_file, perr);
     return 2;
   }
   if (!opt.controller_file.empty() &&
       control::load_controller_params(opt.controller_file.c_str(), cfg.controller, perr) != Status::kOk) {
-    std::fprintf(stderr, "kestrel-fw: %s:%d: %s\n", opt.controller_file.c_str(), perr.line, perr.message);
+    print_param_error(opt.controller_file, perr);
     return 2;
   }
 

@@ -44,6 +44,11 @@ struct ParamError {
   char message[160] = {};
 };
 
+// The error as a tool prints it after its own name: "PATH:LINE: message" for a line's error;
+// the message alone when it names PATH itself ("cannot open 'PATH'"), else "PATH: message".
+// The number of characters snprintf would write (no terminating zero counted).
+int describe(const char* path, const ParamError& error, char* buf, std::size_t cap);
+
 Status parse_params(std::string_view text, std::span<const ParamField> fields, ParamError& error);
 // kOk when every field's value lies in its [min, max] (NaN does not): the range check a
 // module's validate() shares with the parser.
