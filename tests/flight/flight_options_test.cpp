@@ -253,7 +253,7 @@ TEST(FlightOptions, TheCompactSlamFollowsTheLaserUnlessAsked) {
       test::write_temp_file("flight_options_test_bad.slam", "min_points = 900\nmax_points = 100\n");
   FlightOptions bad;
   EXPECT_EQ(parse_flight_options(mission::MissionKind::kExplore, options({{"slam", bad_path.c_str()}}), bad),
-            bad_path + ":0: inconsistent SLAM parameters: need min_points <= max_points");
+            bad_path + ": inconsistent SLAM parameters: need min_points <= max_points");
   EXPECT_EQ(bad.stack.slam.min_points, slam::SlamParams{}.min_points);  // nothing taken from it
   std::remove(bad_path.c_str());
   FlightOptions missing;
