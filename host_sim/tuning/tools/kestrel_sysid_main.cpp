@@ -25,6 +25,13 @@ namespace {
 
 using namespace kestrel;
 
+// A parameter file's error in the words every tool uses (params::describe), then `why`.
+void print_param_error(const std::string& path, const params::ParamError& err, const char* why) {
+  char buf[512];
+  params::describe(path.c_str(), err, buf, sizeof(buf));
+  std::fprintf(stderr, "kestrel-sysid: %s%s\n", buf, why);
+}
+
 struct Options {
   std::string out = "sysid-out";
   std::string script;  // path; "" = the built-in excitation flight
@@ -176,13 +183,12 @@ int main(int argc, char** argv) {
   params::ParamError perr;
   if (params::save_params_file(path.c_str(), control::controller_param_fields(p),
                                "controller parameters identified by kestrel-sysid", perr) != Status::kOk) {
-    std::fprintf(stderr, "kestrel-sysid: %s: %s\n", path.c_str(), perr.message);
+    print_param_error(path, perr, "");
     return 1;
   }
   control::ControllerParams back;
   if (control::load_controller_params(path.c_str(), back, perr) != Status::kOk) {
-    std::fprintf(stderr, "kestrel-sysid: %s does not load back: line %d: %s\n", path.c_str(), perr.line,
-                 perr.message);
+    print_param_error(path, perr, " (written but does not load back)");
     return 1;
   }
   std::printf("wrote %s\n", path.c_str());

@@ -26,6 +26,13 @@ namespace {
 
 using namespace kestrel;
 
+// A parameter file's error in the words every tool uses (params::describe), then `why`.
+void print_param_error(const std::string& path, const params::ParamError& err, const char* why) {
+  char buf[512];
+  params::describe(path.c_str(), err, buf, sizeof(buf));
+  std::fprintf(stderr, "kestrel-tune-ekf: %s%s\n", buf, why);
+}
+
 struct Options {
   std::vector<uint64_t> train{1, 2, 3, 4, 5, 6};
   std::vector<uint64_t> test{11, 12};
@@ -255,13 +262,12 @@ int main(int argc, char** argv) {
   params::ParamError perr;
   if (params::save_params_file(params_path.c_str(), lf, "EKF noise parameters learned by kestrel-tune-ekf", perr) !=
       Status::kOk) {
-    std::fprintf(stderr, "kestrel-tune-ekf: %s: %s\n", params_path.c_str(), perr.message);
+    print_param_error(params_path, perr, "");
     return 1;
   }
   estimation::EkfParams reloaded;
   if (estimation::load_ekf_params(params_path.c_str(), reloaded, perr) != Status::kOk) {
-    std::fprintf(stderr, "kestrel-tune-ekf: %s does not load back: line %d: %s\n", params_path.c_str(), perr.line,
-                 perr.message);
+    print_param_error(params_path, perr, " (written but does not load back)");
     return 1;
   }
   std::printf("wrote %s\n", params_path.c_str());
