@@ -465,6 +465,13 @@ TEST(ScanMatcher, DeskewsASweepTakenWhileTurning) {
     const ScanMatch s = r.m->process(test::cast_sweep(truth, motion, test::room(), 682, 4.19f, at(1)), &prior);
     ASSERT_TRUE(s.ok());
     ASSERT_EQ(s.measurement.flags & match_flag::kLost, 0u);
+    // The points carry the sweep they were deskewed with (sensor frame, per beam), so that a
+    // walk along a beam that found nothing can follow it (Relocaliser).
+    const ScanPoints& pts = r.m->scan_points();
+    const float step_s = 98e-6f, c = std::cos(truth.theta), sn = std::sin(truth.theta);
+    EXPECT_NEAR(pts.sweep_dtheta_rad, with_motion ? motion.yaw_rate_radps * step_s : 0.0f, 1e-7f);
+    EXPECT_NEAR(pts.sweep_dx_m, with_motion ? c * motion.vx_mps * step_s : 0.0f, 1e-7f);
+    EXPECT_NEAR(pts.sweep_dy_m, with_motion ? -sn * motion.vx_mps * step_s : 0.0f, 1e-7f);
     heading_error[with_motion ? 0 : 1] = std::fabs(s.measurement.pose.theta - truth.theta);
     position_error[with_motion ? 0 : 1] = std::hypot(s.measurement.pose.x - truth.x, s.measurement.pose.y - truth.y);
   }
@@ -491,6 +498,8 @@ TEST(ScanMatcher, NonFiniteMotionLeavesTheScanAsItIs) {
     scan.beam_interval = Duration::from_us(98);
     const ScanMatch s = r.m->process(scan, &prior);
     ASSERT_TRUE(s.ok()) << "bad heading: " << bad_heading;
+    EXPECT_EQ(r.m->scan_points().sweep_dtheta_rad, 0.0f);
+    EXPECT_EQ(r.m->scan_points().sweep_dx_m, 0.0f);
     EXPECT_LT(std::hypot(s.measurement.pose.x, s.measurement.pose.y), 0.0075f);
     EXPECT_LT(std::fabs(s.measurement.pose.theta), 0.003f);
   }

@@ -320,5 +320,60 @@ TEST(Relocaliser, KeepsWhatItsReferencesSawFreeAndForgetsItWithThem) {
   EXPECT_TRUE(f.r.seen_free(2.5f, 7.0f));
 }
 
+// A scan taken turning `turn_per_beam` further round with each beam, from `pose` (the
+// stamp's, the first beam's): the raw scan, and its returns deskewed to the stamp as the scan
+// matcher hands them over, with the sweep they were deskewed with.
+struct TurningScan {
+  LaserScan raw;
+  ScanPoints points;
+};
+TurningScan turning_scan(const SegmentWorld& w, const LaserModel& m, const Pose2& pose, float turn_per_beam) {
+  TurningScan t;
+  t.raw = w.scan(m, pose.x, pose.y, pose.theta);
+  t.points.angle_step_rad = std::fabs(t.raw.angle_step_rad);
+  t.points.sweep_dtheta_rad = turn_per_beam;
+  for (uint16_t i = 0; i < t.raw.beam_count; ++i) {
+    const float turned = static_cast<float>(i) * turn_per_beam;
+    const uint16_t r = w.scan(m, pose.x, pose.y, pose.theta + turned).range_mm[i];
+    t.raw.range_mm[i] = r;
+    if (!LaserScan::is_return(r) || r >= t.raw.max_range_mm) continue;
+    const float a = t.raw.angle_of(i) + turned;
+    ScanPoints& p = t.points;
+    p.x[p.count] = 1e-3f * r * std::cos(a);
+    p.y[p.count] = 1e-3f * r * std::sin(a);
+    p.range_mm[p.count] = r;
+    p.beam[p.count] = i;
+    ++p.count;
+  }
+  return t;
+}
+
+// A reference taken in a fast turn (3 rad/s: the URG-04LX's sweep ends 0.2 rad further round
+// than it starts) marks free where its beams went, not where the raw scan's angles say: the
+// open side past the fan's last angle is seen free, 3 m out, as the deskewed points have it.
+// A sweep no vehicle makes (NaN, or a turn over a radian) is walked as taken at once.
+TEST(Relocaliser, MarksFreeWhereATurningScansBeamsWent) {
+  SegmentWorld w;
+  w.add(-10, -2, 10, -2);  // a wall south of the vehicle, open elsewhere
+  const LaserModel m = LaserModel::urg04lx();
+  const float turn_per_beam = 3.0f * 100e-3f / 1024.0f;  // 3 rad/s, a 100 ms mirror of 1024 steps
+  TurningScan t = turning_scan(w, m, {}, turn_per_beam);
+  const float fan_end = static_cast<float>(m.first_angle() + m.step() * (m.beams - 1));
+  const float beyond_fan = fan_end + 0.15f;  // the last beam went 0.2 rad further round
+  Relocaliser r;
+  ASSERT_EQ(r.configure(RelocaliserParams{}, matcher_for(m)), Status::kOk);
+  ASSERT_EQ(r.add_reference(t.points, {}, &t.raw), Status::kOk);
+  EXPECT_TRUE(r.seen_free(3.0f * std::cos(beyond_fan), 3.0f * std::sin(beyond_fan)));
+  EXPECT_FALSE(r.seen_free(3.0f * std::cos(fan_end + 0.3f), 3.0f * std::sin(fan_end + 0.3f)));
+
+  for (const float implausible : {std::nanf(""), 1.0f / static_cast<float>(m.beams) + 1e-3f}) {
+    t.points.sweep_dtheta_rad = implausible;
+    ASSERT_EQ(r.configure(RelocaliserParams{}, matcher_for(m)), Status::kOk);
+    ASSERT_EQ(r.add_reference(t.points, {}, &t.raw), Status::kOk);
+    EXPECT_FALSE(r.seen_free(3.0f * std::cos(beyond_fan), 3.0f * std::sin(beyond_fan)));
+    EXPECT_TRUE(r.seen_free(3.0f * std::cos(fan_end - 0.05f), 3.0f * std::sin(fan_end - 0.05f)));
+  }
+}
+
 }  // namespace
 }  // namespace kestrel::scan_matching

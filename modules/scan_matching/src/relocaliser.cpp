@@ -103,39 +103,61 @@ float Relocaliser::second_peak_ratio(const GridPose& best) {
   return best.score > 0 ? static_cast<float>(std::max(0, second.score)) / static_cast<float>(best.score) : 1.0f;
 }
 
-// Whether the ray from the pose at `angle` (world frame) meets a cell the reference drew as
-// wall within reach_m.
-bool Relocaliser::passes_a_wall(const Pose2& pose, float angle, float reach_m) const {
+// Whether the ray from `ray` (world frame, along its heading) meets a cell the reference drew
+// as wall within reach_m.
+bool Relocaliser::passes_a_wall(const Pose2& ray, float reach_m) const {
   const auto wall = static_cast<uint8_t>(std::ceil(params_.wall_level * static_cast<float>(kCellMax)));
-  return walk_cells(map_, pose, angle, reach_m, [&](int x, int y) { return map_.at(x, y) >= wall; });
+  return walk_cells(map_, ray, ray.theta, reach_m, [&](int x, int y) { return map_.at(x, y) >= wall; });
 }
+
+namespace {
+// The sweep's motion the points were deskewed with, when it is one a vehicle can make over a
+// sweep (under a metre and a radian): beyond it, or not finite, the scan is walked as taken at
+// once rather than from origins the integer walk cannot hold.
+bool plausible_sweep(const ScanPoints& pts, uint16_t beams) {
+  const float n = static_cast<float>(beams);
+  return std::isfinite(pts.sweep_dx_m) && std::isfinite(pts.sweep_dy_m) && std::isfinite(pts.sweep_dtheta_rad) &&
+         std::hypot(pts.sweep_dx_m, pts.sweep_dy_m) * n < 1.0f && std::fabs(pts.sweep_dtheta_rad) * n < 1.0f;
+}
+}  // namespace
 
 template <typename Beam>
 void Relocaliser::for_each_beam(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose, Beam beam) const {
   const float margin = params_.see_through_margin_m;
-  const auto walk = [&](float angle, float reach) {
-    if (reach > map_.resolution_m()) beam(angle, reach);
-  };
-  // The raw scan's beams are not deskewed, the points are: in the take-off turn (0.5 rad/s) the
-  // URG-04LX's last beam lies 0.03 rad from its point, 12 cm sideways at 4 m, about the kernel's
-  // 3 sigma, the only guard of a walk that grazes a wall. No right fix refused by either walk has
-  // been seen (EXPERIMENTS.md, *A home fix must not put walls where the take-off turn saw through*).
   if (scan != nullptr && !scan->fan_well_formed()) scan = nullptr;
+  const uint16_t last_point_beam = pts.count > 0 ? pts.beam[pts.count - 1] : 0;
+  const bool sweep = plausible_sweep(pts, std::max<uint16_t>(scan != nullptr ? scan->beam_count : 0, last_point_beam));
+  const float c = std::cos(pose.theta), s = std::sin(pose.theta);
+  const float step_x = sweep ? c * pts.sweep_dx_m - s * pts.sweep_dy_m : 0.0f;  // world frame, per beam
+  const float step_y = sweep ? s * pts.sweep_dx_m + c * pts.sweep_dy_m : 0.0f;
+  const float step_theta = sweep ? pts.sweep_dtheta_rad : 0.0f;
+  // Beam b as the deskew saw it: from where the sensor was when b was taken, looking b steps of
+  // the sweep's turn further round (in the take-off turn, 0.5 rad/s, the URG-04LX's last beam
+  // is 0.03 rad round from the stamp's, 12 cm sideways at 4 m: the kernel's 3 sigma, the only
+  // guard of a walk that grazes a wall).
+  const auto walk = [&](uint16_t b, float sensor_angle, float reach) {
+    if (!(reach > map_.resolution_m())) return;
+    const auto k = static_cast<float>(b);
+    beam(Pose2{pose.x + k * step_x, pose.y + k * step_y, pose.theta + sensor_angle + k * step_theta}, reach);
+  };
   if (scan != nullptr) {
     const uint16_t n = std::min<uint16_t>(scan->beam_count, static_cast<uint16_t>(kMaxBeams));
     const float reach = 1e-3f * static_cast<float>(scan->max_range_mm) - margin;
     for (uint16_t i = 0; i < n; ++i) {
       const uint16_t r = scan->range_mm[i];
-      const float a = pose.theta + scan->angle_of(i);
       if (LaserScan::is_return(r) && r < scan->max_range_mm) {
-        walk(a, 1e-3f * static_cast<float>(r) - margin);
+        walk(i, scan->angle_of(i), 1e-3f * static_cast<float>(r) - margin);
       } else if (r == range_code::kNoReturn) {
-        walk(a, reach);
+        walk(i, scan->angle_of(i), reach);
       }
     }
   } else {
-    for (uint16_t i = 0; i < pts.count; ++i)
-      walk(pose.theta + std::atan2(pts.y[i], pts.x[i]), std::hypot(pts.x[i], pts.y[i]) - margin);
+    // The deskewed point less its beam's origin is the beam as taken, turned by the sweep.
+    for (uint16_t i = 0; i < pts.count; ++i) {
+      const float k = sweep ? static_cast<float>(pts.beam[i]) : 0.0f;
+      const float x = pts.x[i] - k * pts.sweep_dx_m, y = pts.y[i] - k * pts.sweep_dy_m;
+      walk(pts.beam[i], std::atan2(y, x) - k * step_theta, std::hypot(x, y) - margin);
+    }
   }
 }
 
@@ -143,9 +165,9 @@ void Relocaliser::for_each_beam(const ScanPoints& pts, const LaserScan* scan, co
 // nothing), the share that pass a reference wall.
 float Relocaliser::see_through_fraction(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) const {
   int walked = 0, through = 0;
-  for_each_beam(pts, scan, pose, [&](float angle, float reach) {
+  for_each_beam(pts, scan, pose, [&](const Pose2& ray, float reach) {
     ++walked;
-    if (passes_a_wall(pose, angle, reach)) ++through;
+    if (passes_a_wall(ray, reach)) ++through;
   });
   return walked > 0 ? static_cast<float>(through) / static_cast<float>(walked) : 0.0f;
 }
@@ -170,8 +192,8 @@ bool Relocaliser::cell_of(float x_m, float y_m, int& x, int& y) const {
 }
 
 void Relocaliser::mark_seen_free(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) {
-  for_each_beam(pts, scan, pose, [&](float angle, float reach) {
-    walk_cells(map_, pose, angle, reach, [&](int x, int y) {
+  for_each_beam(pts, scan, pose, [&](const Pose2& ray, float reach) {
+    walk_cells(map_, ray, ray.theta, reach, [&](int x, int y) {
       if (on_map(x, y)) seen_free_[cell_index(x, y)] = true;
       return false;
     });

@@ -54,6 +54,7 @@ bool ScanMatcher::to_points(const LaserScan& scan) {
   ScanPoints& pts = key_.points;
   pts.count = 0;
   pts.angle_step_rad = std::fabs(scan.angle_step_rad);
+  pts.sweep_dx_m = pts.sweep_dy_m = pts.sweep_dtheta_rad = 0;
   const float lo = params_.min_range_m * 1000.0f;
   float hi = params_.max_range_m * 1000.0f;
   if (scan.max_range_mm > 0) hi = std::min(hi, static_cast<float>(scan.max_range_mm));
@@ -89,6 +90,9 @@ void ScanMatcher::deskew(const LaserScan& scan, const PosePrior& prior) {
   const float vx = c * prior.vx_mps + s * prior.vy_mps, vy = -s * prior.vx_mps + c * prior.vy_mps;  // sensor frame
   const float step_s = static_cast<float>(scan.beam_interval.seconds());
   ScanPoints& pts = key_.points;
+  pts.sweep_dx_m = vx * step_s;
+  pts.sweep_dy_m = vy * step_s;
+  pts.sweep_dtheta_rad = w * step_s;
   for (uint16_t i = 0; i < pts.count; ++i) {
     const float t = step_s * static_cast<float>(pts.beam[i]);
     const float a = w * t, ca = 1.0f - 0.5f * a * a;

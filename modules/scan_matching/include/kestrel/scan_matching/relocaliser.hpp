@@ -135,15 +135,16 @@ class Relocaliser {
   bool within_map(const Pose2& pose) const;
   float second_peak_ratio(const GridPose& best);
   float see_through_fraction(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose) const;
-  bool passes_a_wall(const Pose2& pose, float angle, float reach_m) const;
+  bool passes_a_wall(const Pose2& ray, float reach_m) const;
   // The map's cells: whether (x, y) is one, its index in seen_free_, the cell of a world point.
   bool on_map(int x, int y) const;
   std::size_t cell_index(int x, int y) const;
   bool cell_of(float x_m, float y_m, int& x, int& y) const;
   void mark_seen_free(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose);
   float returns_in_free_fraction(const ScanPoints& pts, const Pose2& pose) const;
-  // Calls each beam of the scan (or, without it, each point) with its world angle and how far
-  // to walk it: see_through_margin_m short of its return, or of the laser's reach.
+  // Calls each beam of the scan (or, without it, each point) with its ray (where the sensor was
+  // when the beam was taken, heading along the beam, world frame: the points' deskew followed)
+  // and how far to walk it: see_through_margin_m short of its return, or of the laser's reach.
   template <typename Beam>
   void for_each_beam(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose, Beam beam) const;
 
