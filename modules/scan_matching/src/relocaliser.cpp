@@ -205,19 +205,18 @@ bool Relocaliser::seen_free(float x_m, float y_m) const {
   return reference_count_ > 0 && cell_of(x_m, y_m, x, y) && seen_free_[cell_index(x, y)];
 }
 
-// Of the scan's returns placed at `pose`, the share in cells a reference beam crossed with no
-// reference wall within the kernel's reach (3 sigma): a beam grazing a wall marks cells beside
-// it, where the wall's own returns land.
-float Relocaliser::returns_in_free_fraction(const ScanPoints& pts, const Pose2& pose) const {
-  if (pts.count == 0) return 0.0f;
-  const float c = std::cos(pose.theta), s = std::sin(pose.theta);
+// Of the points the search judged the best pose on, the share in cells a reference beam crossed
+// with no reference wall within the kernel's reach (3 sigma): a beam grazing a wall marks cells
+// beside it, where the wall's own returns land. The search's own integer cells: no floating
+// point per point (the Verdex has no FPU).
+float Relocaliser::returns_in_free_fraction(const GridPose& best) {
+  const int judged = search_.scored_points(best.k);
+  if (judged == 0) return 0.0f;
   int in_free = 0;
-  for (uint16_t i = 0; i < pts.count; ++i) {
-    int x = 0, y = 0;
-    if (!cell_of(pose.x + c * pts.x[i] - s * pts.y[i], pose.y + s * pts.x[i] + c * pts.y[i], x, y)) continue;
-    if (map_.at(x, y) == 0 && seen_free_[cell_index(x, y)]) ++in_free;
-  }
-  return static_cast<float>(in_free) / static_cast<float>(pts.count);
+  search_.for_each_cell(best.k, best.tx, best.ty, [&](int x, int y) {
+    in_free += map_.at(x, y) == 0 && seen_free_[cell_index(x, y)];
+  });
+  return static_cast<float>(in_free) / static_cast<float>(judged);
 }
 
 Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess, const LaserScan* scan) {
@@ -259,7 +258,7 @@ Relocalisation Relocaliser::locate(const ScanPoints& pts, const Pose2& guess, co
     r.outcome = RelocaliseOutcome::kSeesThrough;
     return r;
   }
-  r.returns_in_free = returns_in_free_fraction(pts, found);
+  r.returns_in_free = returns_in_free_fraction(best);
   if (r.returns_in_free > params_.max_returns_in_free) {
     r.outcome = RelocaliseOutcome::kReturnsInFree;
     return r;

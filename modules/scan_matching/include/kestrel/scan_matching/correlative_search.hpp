@@ -105,6 +105,17 @@ class CorrelativeSearch {
   // how many (`fit`) land on cells of at least `threshold`: whether the scan is already in
   // the map.
   void overlap(int k, int tx, int ty, uint8_t threshold, int& inside, int& fit);
+  // Calls visit(x, y) with the map cell of each point rotation k scores (see setup()) at
+  // (k, tx, ty) that lies inside the map: the cells the search itself judged the pose on.
+  template <typename Visit>
+  void for_each_cell(int k, int tx, int ty, Visit visit) {
+    rotate(k);
+    const auto d = static_cast<unsigned>(map_->dim());
+    for (uint16_t i = 0; i < nq_; ++i) {
+      const auto x = static_cast<unsigned>(qx_[i] + tx), y = static_cast<unsigned>(qy_[i] + ty);
+      if (x < d && y < d) visit(static_cast<int>(x), static_cast<int>(y));
+    }
+  }
   Pose2 pose_of(float k, float tx, float ty) const;
   int half_cells() const { return half_cells_; }
   // How many points rotation k scores (see setup()).

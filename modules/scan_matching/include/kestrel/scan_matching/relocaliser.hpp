@@ -31,9 +31,9 @@
 //     where it was taken, save that the room's open side, where the laser found nothing,
 //     lies beyond the corridor's far wall. Without the raw scan, only returns are walked;
 //   - nor puts walls where the reference saw through: placed at the best pose, at most
-//     max_returns_in_free of the scan's returns fall in cells a reference beam crossed (up to
-//     see_through_margin_m short of its return, or of the laser's reach for a beam that found
-//     nothing) and no reference wall lies near (the map's kernel is zero there). The mirror of
+//     max_returns_in_free of the returns it is judged on fall in cells a reference beam
+//     crossed (up to see_through_margin_m short of its return, or of the laser's reach for a
+//     beam that found nothing) and no reference wall lies near (the map's kernel is zero there). The mirror of
 //     the test above: in iarc-arena, a room beside home, a wall 1.5 m ahead, fits the hallway's
 //     end as well as home does, save that the hallway's wall there is a glass window the
 //     reference's beams passed through.
@@ -72,7 +72,7 @@ struct RelocaliserParams {
   float max_see_through = 0.05f;     // beams through a reference wall, of those judged
   float see_through_margin_m = 0.3f; // a beam is walked to this short of its return
   float wall_level = 0.75f;          // a cell this much of kCellMax is on a wall (1 sigma)
-  float max_returns_in_free = 0.05f; // returns where a reference beam passed, of the scan's
+  float max_returns_in_free = 0.05f; // returns where a reference beam passed, of those judged
 };
 
 // kInvalidArgument: a value out of range, or a window the map and search cannot hold.
@@ -96,7 +96,7 @@ struct Relocalisation {
   float guess_score = 0;   // the guess's
   float second_ratio = 0;  // second peak / best
   float see_through = 0;   // beams through a reference wall at the best pose, of those judged
-  float returns_in_free = 0;  // returns where a reference beam passed, at the best pose, of all
+  float returns_in_free = 0;  // returns where a reference beam passed, at the best pose, of those judged
   uint16_t points = 0;     // points judged at the best pose
   bool fixed() const { return outcome == RelocaliseOutcome::kFixed; }
 };
@@ -141,7 +141,7 @@ class Relocaliser {
   std::size_t cell_index(int x, int y) const;
   bool cell_of(float x_m, float y_m, int& x, int& y) const;
   void mark_seen_free(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose);
-  float returns_in_free_fraction(const ScanPoints& pts, const Pose2& pose) const;
+  float returns_in_free_fraction(const GridPose& best);
   // Calls each beam of the scan (or, without it, each point) with its ray (where the sensor was
   // when the beam was taken, heading along the beam, world frame: the points' deskew followed)
   // and how far to walk it: see_through_margin_m short of its return, or of the laser's reach.
