@@ -117,6 +117,37 @@ TEST(HomeFix, SearchesOnlyOnTheWayHomeAndNearHome) {
   EXPECT_FALSE(h.fix->take(out));
 }
 
+// With explore_radius_m, scans are searched while exploring too, within that of home (by the
+// estimate), one a period (at 0, the default, only flying home: the test above); the same fix
+// rules hold.
+TEST(HomeFix, SearchesWhileExploringWithinItsOwnRadiusWhenAsked) {
+  Harness h;
+  h.config.explore_radius_m = 4.0f;
+  scan_matching::Params m;
+  m.max_range_m = 3.99f;
+  ASSERT_EQ(h.fix->configure(h.config, m), Status::kOk);
+  first_minute(h);
+  h.t = h.t + Duration::from_s(h.config.reference_window_s);
+  Pose2 truth{1.6f, 0.4f, 2.6f};
+  for (int i = 0; i < 20; ++i) h.scan(truth, {truth.x + 4.5f, truth.y, truth.theta}, false);  // 6 m out
+  EXPECT_EQ(h.fix->counters().searches, 0u);
+  const Pose2 drift{1.2f, -0.9f, 0.08f};  // believed = drift * truth: about 2.5 m from home
+  PoseMeasurement2 out;
+  for (int i = 0; i < 30 && !h.fix->take(out); ++i) {
+    truth.x -= 0.04f;  // exploring: 0.4 m between searches, another view
+    h.scan(truth, drift.compose(truth), false);
+  }
+  ASSERT_EQ(h.fix->counters().confirmed, 1u);
+  EXPECT_LE(h.fix->counters().searches, 3u);
+  EXPECT_NEAR(out.pose.x, truth.x, 0.06f);
+  EXPECT_NEAR(out.pose.y, truth.y, 0.06f);
+
+  h.config.explore_radius_m = -0.5f;
+  EXPECT_EQ(h.fix->configure(h.config, m), Status::kInvalidArgument);
+  h.config.explore_radius_m = std::nanf("");
+  EXPECT_EQ(h.fix->configure(h.config, m), Status::kInvalidArgument);
+}
+
 // The same fix found twice from the same view confirms nothing: a view like another place's
 // is like it every time it is asked. Another view confirms it.
 TEST(HomeFix, TheSameViewAskedTwiceConfirmsNothing) {

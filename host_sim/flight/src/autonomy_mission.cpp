@@ -219,6 +219,11 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "home_fix" && kind == mission::MissionKind::kExplore) {
       if (value != "on" && value != "off") return "home_fix: expected on or off, got '" + value + "'";
       out.stack.home_fix.enabled = value == "on";
+    } else if (key == "home_fix_explore_m" && kind == mission::MissionKind::kExplore) {
+      // The home fix searches while exploring too, within this of home (0: only flying home).
+      if (!parse_double(value, d) || d < 0 || d > 12)
+        return "home_fix_explore_m: '" + value + "' is not a distance in [0, 12] m";
+      out.stack.home_fix.explore_radius_m = static_cast<float>(d);
     } else if (key == "takeoff_survey_rad" && kind == mission::MissionKind::kExplore) {
       // The home fix's turn after take-off, whichever the explorer (0: none; its reference
       // scans then see only what lies ahead).

@@ -60,6 +60,9 @@ struct HomeFixConfig {
   float reference_spacing_m = 1.0f;    // ...each this far from the last one
   float reference_turn_rad = 1.0f;     // ...or turned this much from it
   float radius_m = 4.0f;               // searched within this of home, flying home
+  // ...and within this of home while exploring (0: not): the glass window beside iarc-arena's
+  // home is where a drifted URG-04LX flight touches (modules/exploration/EXPERIMENTS.md).
+  float explore_radius_m = 0.0f;
   float period_s = 1.0f;               // at most one search per this long
   float agree_m = 0.15f;               // two searches in a row agree on the vehicle's pose within
   float agree_rad = 0.05f;
