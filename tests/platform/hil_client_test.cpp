@@ -197,6 +197,39 @@ TEST(HilClient, SendsSetpointsAndArmCommands) {
   EXPECT_FLOAT_EQ(out.pitch_rad, -0.1f);
 }
 
+// A status frame that is dropped (a NaN inside, or a stamp DeviceClock refuses) must not touch
+// the one the stack has not read yet: the autopilot's last good word is what poll_status gives.
+TEST(HilClient, DroppedStatusFrameLeavesTheUnreadOneIntact) {
+  Pair pair;
+  HilClient hil(pair.client, board_clock, {}, Duration::from_ms(5));
+  FlightStatus good;
+  good.stamp = TimeUs::from_us(1000);
+  good.armed = true;
+  good.battery_v = 11.1f;
+  good.roll_rad = 0.1f;
+  send_msg(pair.server, HilType::kFlightStatus, good);
+  FlightStatus nan_roll = good;
+  nan_roll.stamp = TimeUs::from_us(2000);
+  nan_roll.armed = false;
+  nan_roll.roll_rad = std::nanf("");
+  send_msg(pair.server, HilType::kFlightStatus, nan_roll);
+  FlightStatus far_ahead = good;
+  far_ahead.stamp = TimeUs::from_s(7200);  // an hour past the first: refused
+  far_ahead.armed = false;
+  far_ahead.battery_v = 3.0f;
+  send_msg(pair.server, HilType::kFlightStatus, far_ahead);
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 3; }));
+  EXPECT_EQ(hil.counters().malformed, 1u);
+  EXPECT_EQ(hil.counters().bad_stamps, 1u);
+  FlightStatus got;
+  ASSERT_EQ(hil.poll_status(got), Status::kOk);
+  EXPECT_TRUE(got.armed);
+  EXPECT_FLOAT_EQ(got.battery_v, 11.1f);
+  EXPECT_FLOAT_EQ(got.roll_rad, 0.1f);
+  EXPECT_EQ(got.stamp, board_clock.now());  // the good frame's own stamp, mapped
+  EXPECT_EQ(hil.poll_status(got), Status::kNoData);
+}
+
 TEST(HilClient, PeerGoneIsReportedAndGarbageCounted) {
   Pair pair;
   HilClient hil(pair.client, board_clock, {}, Duration::from_ms(5));

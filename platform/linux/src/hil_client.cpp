@@ -64,15 +64,19 @@ void HilClient::dispatch(TimeUs arrival) {
       (void)altitude_queue_.push(s);  // a lost altitude sample is harmless: the next follows
       return;
     }
-    case HilType::kFlightStatus:
-      if (comms::decode_payload(p, n, status_) != Status::kOk) {
+    case HilType::kFlightStatus: {
+      // Decoded aside: a dropped frame must not overwrite a good status the stack has yet to read.
+      FlightStatus st;
+      if (comms::decode_payload(p, n, st) != Status::kOk) {
         ++counters_.malformed;
-      } else if (!peer_clock_.observe(status_.stamp, arrival)) {
+      } else if (!peer_clock_.observe(st.stamp, arrival)) {
         ++counters_.bad_stamps;
       } else {
+        status_ = st;
         status_fresh_ = true;
       }
       return;
+    }
     default:
       ++counters_.unknown_type;
       return;
