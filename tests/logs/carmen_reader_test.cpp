@@ -190,6 +190,15 @@ TEST(CarmenReader, BadLinesGiveStatusAndLineNumber) {
        Status::kMalformed, 1},
       {"robotlaser max range", "ROBOTLASER1 0 -1 2 0.5 0 0.01 0 2 1 2 0 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
        Status::kMalformed, 1},
+      // Finite as doubles, but not as the floats the records carry: inf, or a step of zero.
+      {"imu accel beyond float", "IMU 0 0 1e40 1 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n", Status::kNotFinite, 1},
+      {"imu gyro beyond float", "IMU 0 0 9.8 1 0 0 0 0 0 0 0 -4e38 0 1.0 h 1.0\n", Status::kNotFinite, 1},
+      {"robotlaser start beyond float", "ROBOTLASER1 0 1e40 2 0.5 30 0.01 0 2 1 2 0 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
+       Status::kNotFinite, 1},
+      {"robotlaser step beyond float", "ROBOTLASER1 0 -1 2 1e39 30 0.01 0 2 1 2 0 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
+       Status::kNotFinite, 1},
+      {"robotlaser step zero as float", "ROBOTLASER1 0 -1 2 1e-300 30 0.01 0 2 1 2 0 0 0 0 0 0 0 0 0 0 0 0 1.0 h 1.0\n",
+       Status::kMalformed, 1},
       {"param value", "PARAM kestrel_imu_period_us fast h 0\n", Status::kMalformed, 1},
       {"param range", "PARAM kestrel_imu_period_us -5 h 0\n", Status::kOutOfRange, 1},
   };

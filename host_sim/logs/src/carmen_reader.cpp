@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include "kestrel/core/angle.hpp"
 #include "kestrel/logs/range_conversion.hpp"
@@ -197,6 +198,20 @@ Status read_count(FieldCursor& f, const char* what, long long& n, LogError& e) {
   return Status::kOk;
 }
 
+// A field the record carries as a float: finite as a double is not enough ("1e40" would be an
+// IMU sample or a scan angle of inf).
+Status read_float(FieldCursor& f, float& out, LogError& e) {
+  double v = 0;
+  const Status s = f.read_double(v, e.reason, sizeof e.reason);
+  if (!ok(s)) return s;
+  if (std::fabs(v) > static_cast<double>(std::numeric_limits<float>::max())) {
+    std::snprintf(e.reason, sizeof e.reason, "field %zu: %g is beyond a float's range", f.field_index(), v);
+    return Status::kNotFinite;
+  }
+  out = static_cast<float>(v);
+  return Status::kOk;
+}
+
 Status read_pose(FieldCursor& f, Pose2d& p, LogError& e) {
   Status s = f.read_double(p.x, e.reason, sizeof e.reason);
   if (ok(s)) s = f.read_double(p.y, e.reason, sizeof e.reason);
@@ -245,11 +260,12 @@ Status CarmenReader::parse_flaser(FieldCursor& f, LogRecord& out) {
 
 Status CarmenReader::parse_robotlaser1(FieldCursor& f, LogRecord& out) {
   long long laser_type = 0, remission_mode = 0, n = 0, m = 0;
-  double start = 0, fov = 0, res = 0, max_range = 0, accuracy = 0;
+  double fov = 0, max_range = 0, accuracy = 0;
+  float start = 0, res = 0;
   Status s = f.read_int(laser_type, error_.reason, sizeof error_.reason);
-  if (ok(s)) s = f.read_double(start, error_.reason, sizeof error_.reason);
+  if (ok(s)) s = read_float(f, start, error_);
   if (ok(s)) s = f.read_double(fov, error_.reason, sizeof error_.reason);
-  if (ok(s)) s = f.read_double(res, error_.reason, sizeof error_.reason);
+  if (ok(s)) s = read_float(f, res, error_);
   if (ok(s)) s = f.read_double(max_range, error_.reason, sizeof error_.reason);
   if (ok(s)) s = f.read_double(accuracy, error_.reason, sizeof error_.reason);
   if (ok(s)) s = f.read_int(remission_mode, error_.reason, sizeof error_.reason);
@@ -267,7 +283,7 @@ Status CarmenReader::parse_robotlaser1(FieldCursor& f, LogRecord& out) {
     std::snprintf(error_.reason, sizeof error_.reason, "%lld beams, more than kMaxBeams (%zu)", n, kMaxBeams);
     return Status::kCapacityExceeded;
   }
-  if (n > 1 && res == 0) {
+  if (n > 1 && res == 0) {  // also a resolution too fine for a float, e.g. 1e-300
     std::snprintf(error_.reason, sizeof error_.reason, "angular resolution is zero");
     return Status::kMalformed;
   }
@@ -300,8 +316,8 @@ Status CarmenReader::parse_robotlaser1(FieldCursor& f, LogRecord& out) {
   }
   if (ok(s)) s = read_timestamp(f, out);
   if (!ok(s)) return s;
-  out.scan.first_angle_rad = static_cast<float>(start);
-  out.scan.angle_step_rad = static_cast<float>(res);
+  out.scan.first_angle_rad = start;
+  out.scan.angle_step_rad = res;
   out.scan.max_range_mm = max_range_to_mm(max_range);
   out.scan.stamp = TimeUs::from_s(out.timestamp_s);
   out.has_pose = true;
@@ -314,9 +330,12 @@ Status CarmenReader::parse_imu(FieldCursor& f, LogRecord& out) {
                   f.remaining());
     return Status::kMalformed;
   }
-  double v[13];
-  for (double& x : v) {
-    const Status s = f.read_double(x, error_.reason, sizeof error_.reason);
+  // accX accY accZ, q0..q3 magX..magZ (not kept: any finite double), gyroX gyroY gyroZ.
+  float v[13] = {};
+  for (int i = 0; i < 13; ++i) {
+    double ignored = 0;
+    const bool kept = i < 3 || i >= 10;
+    const Status s = kept ? read_float(f, v[i], error_) : f.read_double(ignored, error_.reason, sizeof error_.reason);
     if (!ok(s)) return s;
   }
   const Status s = read_timestamp(f, out);
@@ -324,8 +343,8 @@ Status CarmenReader::parse_imu(FieldCursor& f, LogRecord& out) {
   out.kind = LogRecord::Kind::kImu;
   out.has_pose = false;
   out.imu.stamp = TimeUs::from_s(out.timestamp_s);
-  out.imu.accel_mps2 = Eigen::Vector3f(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
-  out.imu.gyro_radps = Eigen::Vector3f(static_cast<float>(v[10]), static_cast<float>(v[11]), static_cast<float>(v[12]));
+  out.imu.accel_mps2 = Eigen::Vector3f(v[0], v[1], v[2]);
+  out.imu.gyro_radps = Eigen::Vector3f(v[10], v[11], v[12]);
   return Status::kOk;
 }
 
