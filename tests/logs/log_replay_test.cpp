@@ -7,6 +7,7 @@
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/logs/carmen_reader.hpp"
 #include "kestrel/logs/carmen_writer.hpp"
+#include "kestrel/logs/mines_reader.hpp"
 #include "log_test_files.hpp"
 
 namespace kestrel::logs {
@@ -170,6 +171,52 @@ TEST(LogReplay, ABadLineReachesEachDriverOnceThenClosed) {
   EXPECT_EQ(s, Status::kMalformed);
   EXPECT_EQ(replay.imu().poll(imu), Status::kClosed);
   EXPECT_GT(replay.source().error().line, 0u);
+}
+
+// Stamps each within int64 microseconds, but so far apart (a '-' slipped in front of one) that
+// the clock-paced replay's offset plus the later one would wrap: the reader refuses them.
+template <class Reader>
+Status replay_until_not_ok(Reader& reader, int& scans) {
+  ManualTimeSource clock(TimeUs::from_s(50));
+  LogReplay replay(reader, &clock);
+  LaserScan scan;
+  Status s;
+  scans = 0;
+  for (int step = 0; step < 10 && (s = replay.laser().poll(scan)) != Status::kClosed; ++step) {
+    if (s == Status::kOk) ++scans;
+    if (s != Status::kOk && s != Status::kNoData) return s;
+    clock.advance(Duration::from_ms(25));
+  }
+  return s;
+}
+
+TEST(LogReplay, CarmenStampsTooFarApartAreAnErrorNotAWrappedClock) {
+  TempLogFile file("far.log");
+  file.write("FLASER 3 1 2 3 0 0 0 0 0 0 -9e12 h 0\nFLASER 3 1 2 3 0 0 0 0 0 0 9e12 h 0\n");
+  CarmenReader reader;
+  ASSERT_EQ(reader.open(file.c_str()), Status::kOk);
+  int scans = 0;
+  EXPECT_EQ(replay_until_not_ok(reader, scans), Status::kOutOfRange) << reader.error().reason;
+  EXPECT_EQ(scans, 0);
+  EXPECT_EQ(reader.error().line, 1u);
+}
+
+TEST(LogReplay, MinesStampsTooFarApartAreAnErrorNotAWrappedClock) {
+  TempLogFile file("far.dat");
+  std::string text;
+  for (const char* stamp : {"-9000000000000000000", "9000000000000000000"}) {
+    text += stamp;
+    for (int i = 1; i < 24; ++i) text += " 0";
+    for (int i = 0; i < 682; ++i) text += " 1000";
+    text += "\n";
+  }
+  file.write(text);
+  MinesReader reader;
+  ASSERT_EQ(reader.open(file.c_str()), Status::kOk);
+  int scans = 0;
+  EXPECT_EQ(replay_until_not_ok(reader, scans), Status::kOutOfRange) << reader.error().reason;
+  EXPECT_EQ(scans, 0);
+  EXPECT_EQ(reader.error().line, 1u);
 }
 
 }  // namespace

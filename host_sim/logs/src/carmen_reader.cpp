@@ -166,8 +166,8 @@ Status CarmenReader::read_timestamp(FieldCursor& f, LogRecord& out) {
   double t = 0;
   Status s = f.read_double(t, error_.reason, sizeof error_.reason);
   if (!ok(s)) return s;
-  // TimeUs counts microseconds in an int64: keep well inside it (about 292,000 years).
-  if (std::fabs(t) > 9.0e12) {
+  // TimeUs counts microseconds in an int64: keep well inside it (log_record.hpp).
+  if (!(std::fabs(t) * 1e6 <= static_cast<double>(kMaxLogStampUs))) {
     std::snprintf(error_.reason, sizeof error_.reason, "field %zu: time stamp %g s out of range",
                   f.field_index(), t);
     return Status::kOutOfRange;

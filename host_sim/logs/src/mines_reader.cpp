@@ -83,6 +83,10 @@ Status MinesReader::parse(std::string_view line, LogRecord& out) {
   long long stamp_us = 0;
   Status s = f.read_int(stamp_us, error_.reason, sizeof error_.reason);
   if (!ok(s)) return s;
+  if (stamp_us > kMaxLogStampUs || stamp_us < -kMaxLogStampUs) {
+    std::snprintf(error_.reason, sizeof error_.reason, "field 1: time stamp %lld us out of range", stamp_us);
+    return Status::kOutOfRange;
+  }
   for (int i = 1; i < kFirstRangeField; ++i) {
     s = f.skip(error_.reason, sizeof error_.reason);
     if (!ok(s)) return s;

@@ -29,6 +29,12 @@ struct LogRecord {
   ImuSample imu;
 };
 
+// The largest time stamp, either sign, a reader accepts: 10^12 s (31,700 years; a Unix stamp is
+// 1.7e9). Any two stamps then differ by at most 2e18 us, so their difference, and a replay's
+// offset onto a clock added to one, stay within TimeUs's int64; at the int64 limit itself a
+// stamp of -9e12 s and one of +9e12 s made the clock-paced replay's sum wrap.
+inline constexpr int64_t kMaxLogStampUs = 1'000'000'000'000'000'000;
+
 // Why reading stopped: the Status, the 1-based line and a short human-readable reason.
 struct LogError {
   Status status = Status::kOk;
