@@ -5,7 +5,9 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstring>
+#include <thread>
 
 #include "kestrel/platform/linux/serial_port.hpp"
 #include "kestrel/platform/linux/tcp_link.hpp"
@@ -84,6 +86,32 @@ TEST(UdpLink, DatagramsBothWays) {
   ASSERT_TRUE(b.write(ping, 2).ok());
   ASSERT_EQ(read_all(a, buf, 2), 2u);
   EXPECT_EQ(a.connect_peer("bad", 1), Status::kInvalidArgument);
+}
+
+// A timeout already past (a deadline minus a clock that jumped ahead) waits for nothing: poll()
+// would take a negative one as "forever", and the caller would hang on a silent peer.
+TEST(FdLink, TimeoutInThePastDoesNotWaitForever) {
+  UdpLink a, b;
+  ASSERT_EQ(a.open("127.0.0.1", 0), Status::kOk);
+  ASSERT_EQ(b.open("127.0.0.1", 0), Status::kOk);
+  ASSERT_EQ(b.connect_peer("127.0.0.1", a.local_port()), Status::kOk);
+  TcpListener listener;
+  ASSERT_EQ(listener.listen("127.0.0.1", 0), Status::kOk);
+  // Someone does speak, late: so that the test ends (as a failure) even if the waits hang.
+  std::thread late([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+    const uint8_t ping[1] = {1};
+    (void)b.write(ping, 1);
+    TcpLink client;
+    (void)client.connect("127.0.0.1", listener.port(), Duration::from_ms(500));
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  });
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(a.wait_readable(Duration::from_ms(-5)), Status::kTimeout);
+  TcpLink accepted;
+  EXPECT_EQ(listener.accept(accepted, Duration::from_ms(-5)), Status::kTimeout);
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(200));
+  late.join();
 }
 
 TEST(SerialPort, PseudoTerminalPairCarriesBytes) {

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <limits>
 
 namespace kestrel::platform {
 
@@ -13,6 +14,12 @@ Status set_nonblocking(int fd) {
   const int flags = fcntl(fd, F_GETFL, 0);
   if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) < 0) return Status::kIoError;
   return Status::kOk;
+}
+
+int poll_timeout_ms(Duration timeout) {
+  if (timeout.us <= 0) return 0;
+  const int64_t ms = timeout.us / 1000;
+  return ms > std::numeric_limits<int>::max() ? std::numeric_limits<int>::max() : static_cast<int>(ms);
 }
 
 FdLink::~FdLink() { close(); }
@@ -69,7 +76,7 @@ Result<std::size_t> FdLink::read(uint8_t* out, std::size_t capacity) {
 Status FdLink::wait_readable(Duration timeout) const {
   if (fd_ < 0) return Status::kClosed;
   pollfd p{fd_, POLLIN, 0};
-  const int ms = static_cast<int>(timeout.us / 1000);
+  const int ms = poll_timeout_ms(timeout);
   int rc;
   do {
     rc = ::poll(&p, 1, ms);

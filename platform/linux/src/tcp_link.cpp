@@ -19,8 +19,6 @@ bool make_address(const char* ipv4, uint16_t port, sockaddr_in& out) {
   return inet_pton(AF_INET, ipv4, &out.sin_addr) == 1;
 }
 
-int poll_ms(Duration d) { return static_cast<int>(d.us / 1000); }
-
 }  // namespace
 
 Status TcpLink::connect(const char* ipv4, uint16_t port, Duration timeout) {
@@ -36,7 +34,7 @@ Status TcpLink::connect(const char* ipv4, uint16_t port, Duration timeout) {
       return Status::kIoError;
     }
     pollfd p{fd, POLLOUT, 0};
-    const int rc = ::poll(&p, 1, poll_ms(timeout));
+    const int rc = ::poll(&p, 1, poll_timeout_ms(timeout));
     int err = 0;
     socklen_t len = sizeof(err);
     if (rc <= 0 || getsockopt(fd, SOL_SOCKET, SO_ERROR, &err, &len) != 0 || err != 0) {
@@ -74,7 +72,7 @@ Status TcpListener::listen(const char* ipv4, uint16_t port) {
 Status TcpListener::accept(TcpLink& out, Duration timeout) {
   if (fd_ < 0) return Status::kClosed;
   pollfd p{fd_, POLLIN, 0};
-  const int rc = ::poll(&p, 1, poll_ms(timeout));
+  const int rc = ::poll(&p, 1, poll_timeout_ms(timeout));
   if (rc == 0) return Status::kTimeout;
   if (rc < 0) return Status::kIoError;
   const int fd = ::accept4(fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
