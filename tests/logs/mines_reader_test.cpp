@@ -99,6 +99,20 @@ TEST(MinesReader, BadLinesGiveStatusAndLineNumber) {
   }
 }
 
+// Every message names a field the same way (FieldCursor's 1-based count, as awk's $N): beam
+// 100 is field 125 whether it is not a number or a number out of range.
+TEST(MinesReader, BadRangesNameTheSameField) {
+  for (const char* bad : {"11x0", "-110", "70000"}) {
+    TempLogFile file("bad.dat");
+    file.write(mines_line(1000, true, 100, bad));
+    MinesReader reader;
+    ASSERT_EQ(reader.open(file.c_str()), Status::kOk);
+    LogRecord rec;
+    EXPECT_EQ(reader.next(rec), Status::kMalformed) << bad;
+    EXPECT_EQ(std::string(reader.error().reason).rfind("field 125: ", 0), 0u) << bad << ": " << reader.error().reason;
+  }
+}
+
 TEST(MinesReader, RandomlyMutatedLogsNeverCrash) {
   const std::string base = mines_line(361431443) + mines_line(361528520, false) + mines_line(361625000);
   std::mt19937 rng(13);

@@ -97,8 +97,9 @@ Status MinesReader::parse(std::string_view line, LogRecord& out) {
     s = f.read_int(mm, error_.reason, sizeof error_.reason);
     if (!ok(s)) return s;
     if (mm < 0 || mm > 65535) {
+      // 1-based, as FieldCursor's own messages count (the header's layout counts from 0).
       std::snprintf(error_.reason, sizeof error_.reason, "field %zu: range %lld mm out of range",
-                    f.field_index() - 1, mm);
+                    f.field_index(), mm);
       return Status::kMalformed;
     }
     scan.range_mm[static_cast<std::size_t>(i)] =
