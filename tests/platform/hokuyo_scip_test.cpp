@@ -90,5 +90,29 @@ TEST(HokuyoScip, RequestsScansAndDecodesThem) {
   EXPECT_EQ(laser.decoder().sum_errors(), 0u);
 }
 
+// A link that always has bytes (a device that never pauses), up to `limit` reads so that a
+// test of the unbounded pump still ends.
+class EndlessLink final : public hal::Link {
+ public:
+  Result<std::size_t> write(const uint8_t*, std::size_t size) override { return size; }
+  Result<std::size_t> read(uint8_t* out, std::size_t capacity) override {
+    if (reads == limit) return std::size_t{0};
+    ++reads;
+    for (std::size_t i = 0; i < capacity; ++i) out[i] = 'x';
+    return capacity;
+  }
+  long reads = 0;
+  long limit = 100'000;
+};
+
+// pump() returns after a bounded amount of such a stream, and the loop gets its tick.
+TEST(HokuyoScip, PumpReturnsWhileTheDeviceFloods) {
+  EndlessLink link;
+  ManualTimeSource clock;
+  static HokuyoScip laser(link, clock, HokuyoModel::urg04lx());
+  EXPECT_EQ(laser.pump(), Status::kOk);
+  EXPECT_LT(link.reads, 1000);  // 51.2 MB read before returning, without the bound
+}
+
 }  // namespace
 }  // namespace kestrel::platform

@@ -8,18 +8,21 @@ using comms::HilType;
 
 Status HilClient::pump() {
   uint8_t buf[512];
-  for (;;) {
+  Status status = Status::kOk;
+  // At most kMaxPumpBytes a call: a peer that never pauses must not keep the loop here.
+  for (std::size_t taken = 0; taken < kMaxPumpBytes;) {
     const Result<std::size_t> r = link_.read(buf, sizeof(buf));
-    if (!r.ok() || r.value() == 0) {
-      // Also when the peer has gone: the last bytes it sent count in what kestrel-fw reports.
-      counters_.crc_errors = decoder_.crc_errors() + decoder_.length_errors();
-      counters_.skipped_bytes = decoder_.skipped_bytes();
-      return r.ok() ? Status::kOk : r.status();
-    }
+    if (!r.ok()) status = r.status();
+    if (!r.ok() || r.value() == 0) break;
     const TimeUs arrival = clock_.now();
     for (std::size_t i = 0; i < r.value(); ++i)
       if (decoder_.push(buf[i])) dispatch(arrival);
+    taken += r.value();
   }
+  // Also when the peer has gone: the last bytes it sent count in what kestrel-fw reports.
+  counters_.crc_errors = decoder_.crc_errors() + decoder_.length_errors();
+  counters_.skipped_bytes = decoder_.skipped_bytes();
+  return status;
 }
 
 void HilClient::dispatch(TimeUs arrival) {

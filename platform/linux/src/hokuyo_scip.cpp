@@ -27,14 +27,17 @@ Status HokuyoScip::start() {
 
 Status HokuyoScip::pump() {
   uint8_t buf[512];
-  for (;;) {
+  // At most kMaxPumpBytes a call: a device that never pauses must not keep the loop here.
+  for (std::size_t taken = 0; taken < kMaxPumpBytes;) {
     const Result<std::size_t> r = link_.read(buf, sizeof(buf));
     if (!r.ok()) return r.status();
     if (r.value() == 0) return Status::kOk;
     const TimeUs arrival = clock_.now();
     for (std::size_t i = 0; i < r.value(); ++i)
       if (decoder_.push(buf[i])) convert(arrival);
+    taken += r.value();
   }
+  return Status::kOk;
 }
 
 void HokuyoScip::convert(TimeUs arrival) {

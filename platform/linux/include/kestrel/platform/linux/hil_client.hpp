@@ -11,6 +11,7 @@
 // clock through one DeviceClock for the link (core/device_clock.hpp), as the Hokuyo driver
 // does its sensor's. Unmapped, a simulator's scans looked hours old to kestrel-fw, whose
 // flight home then held still until it stalled and landed where it was.
+#include <cstddef>
 #include <cstdint>
 
 #include "kestrel/comms/hil_codec.hpp"
@@ -42,7 +43,13 @@ class HilClient final : public hal::LaserScanner, public hal::Imu, public hal::A
   HilClient(hal::Link& link, const TimeSource& clock, const hal::LaserGeometry& geometry, Duration imu_period)
       : link_(link), clock_(clock), geometry_(geometry), imu_period_(imu_period) {}
 
-  // Reads what the link has and decodes it. kClosed when the peer has gone away.
+  // Most bytes one pump() reads: the link's traffic (a 1081-beam scan at 40 Hz and the IMU,
+  // about 100 KB/s) is a few hundred bytes per loop tick, so this drains any backlog within a
+  // few calls, yet a peer that floods the link cannot hold the loop in pump().
+  static constexpr std::size_t kMaxPumpBytes = 16384;
+
+  // Reads what the link has (up to kMaxPumpBytes) and decodes it. kClosed when the peer has
+  // gone away.
   Status pump();
 
   // hal::LaserScanner
