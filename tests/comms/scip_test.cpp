@@ -46,6 +46,16 @@ TEST(Scip, UrgScanRoundTripsThroughEncoderAndDecoder) {
   EXPECT_EQ(d.sum_errors(), 0u);
 }
 
+// Steps are four digits on the wire, as scip_md_request refuses: a step beyond 9999 cannot be
+// written, and a response with a garbled echo ("MD1000010001010") is not one to send.
+TEST(Scip, EncoderRefusesStepsBeyondFourDigits) {
+  const uint16_t ranges[2] = {1000, 1001};
+  uint8_t wire[64];
+  EXPECT_EQ(scip_encode_md_scan(9999, 10000, 0, ranges, 2, wire, sizeof(wire)), 0u);
+  EXPECT_EQ(scip_encode_md_scan(10000, 10001, 0, ranges, 2, wire, sizeof(wire)), 0u);
+  EXPECT_GT(scip_encode_md_scan(9998, 9999, 0, ranges, 2, wire, sizeof(wire)), 0u);
+}
+
 TEST(Scip, CorruptLineDropsTheScanThenRecovers) {
   static uint16_t ranges[1081];
   for (int i = 0; i < 1081; ++i) ranges[i] = static_cast<uint16_t>(100 + i);

@@ -161,7 +161,10 @@ bool ScipDecoder::end_line() {
 
 std::size_t scip_encode_md_scan(uint16_t start_step, uint16_t end_step, uint32_t sensor_time_ms,
                                 const uint16_t* ranges, std::size_t count, uint8_t* out, std::size_t cap) {
-  if (end_step < start_step || count != static_cast<std::size_t>(end_step - start_step + 1u)) return 0;
+  // The echo holds each step in four digits: a larger one would garble it.
+  if (end_step > 9999 || end_step < start_step || count != static_cast<std::size_t>(end_step - start_step + 1u)) {
+    return 0;
+  }
   std::size_t n = 0;
   auto put = [&](uint8_t c) {
     if (n < cap) out[n] = c;

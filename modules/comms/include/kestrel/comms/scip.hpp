@@ -61,7 +61,7 @@ class ScipDecoder {
 };
 
 // Writes an MD scan response for `ranges` (count values from start_step) into out; returns
-// its length, or 0 if it does not fit.
+// its length, or 0 if it does not fit (or a step does not fit the echo's four digits).
 std::size_t scip_encode_md_scan(uint16_t start_step, uint16_t end_step, uint32_t sensor_time_ms,
                                 const uint16_t* ranges, std::size_t count, uint8_t* out, std::size_t cap);
 
