@@ -172,6 +172,8 @@ TEST(CarmenReader, BadLinesGiveStatusAndLineNumber) {
       {"negative count", "FLASER -3 1 2 3 0 0 0 0 0 0 2.0 h 2.0\n", Status::kMalformed, 1},
       {"zero count", "FLASER 0 0 0 0 0 0 0 2.0 h 2.0\n", Status::kMalformed, 1},
       {"nan range", good + "FLASER 3 1 nan 3 0 0 0 0 0 0 2.0 h 2.0\n", Status::kNotFinite, 2},
+      {"two signs", "FLASER 3 1 2 3 +-1.5 0 0 0 0 0 2.0 h 2.0\n", Status::kMalformed, 1},
+      {"two signs count", "FLASER +-3 1 2 3 0 0 0 0 0 0 2.0 h 2.0\n", Status::kMalformed, 1},
       {"inf pose", "FLASER 3 1 2 3 inf 0 0 0 0 0 2.0 h 2.0\n", Status::kNotFinite, 1},
       {"nan time", "FLASER 3 1 2 3 0 0 0 0 0 0 NaN h 2.0\n", Status::kNotFinite, 1},
       {"negative range", "FLASER 3 1 -2 3 0 0 0 0 0 0 2.0 h 2.0\n", Status::kMalformed, 1},

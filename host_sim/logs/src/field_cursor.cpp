@@ -15,6 +15,13 @@ void print_field(char* reason, std::size_t size, const char* what, std::size_t i
   std::snprintf(reason, size, "field %zu: %s '%.*s'", index, what, shown, field.data());
 }
 
+// from_chars rejects a leading '+', which C's printf never writes but people do: drop one,
+// but only before an unsigned number ("+-1" is no number, not -1).
+std::string_view without_plus(std::string_view f) {
+  if (f.size() > 1 && f[0] == '+' && f[1] != '-' && f[1] != '+') f.remove_prefix(1);
+  return f;
+}
+
 }  // namespace
 
 bool FieldCursor::next(std::string_view& field) {
@@ -44,9 +51,7 @@ Status FieldCursor::read_double(double& out, char* reason, std::size_t reason_si
     std::snprintf(reason, reason_size, "field %zu: missing (line too short)", index_ + 1);
     return Status::kMalformed;
   }
-  // from_chars rejects a leading '+', which C's printf never writes but people do.
-  std::string_view digits = f;
-  if (digits.size() > 1 && digits[0] == '+') digits.remove_prefix(1);
+  const std::string_view digits = without_plus(f);
   double v = 0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
   if (ec == std::errc::result_out_of_range) {
@@ -71,8 +76,7 @@ Status FieldCursor::read_int(long long& out, char* reason, std::size_t reason_si
     std::snprintf(reason, reason_size, "field %zu: missing (line too short)", index_ + 1);
     return Status::kMalformed;
   }
-  std::string_view digits = f;
-  if (digits.size() > 1 && digits[0] == '+') digits.remove_prefix(1);
+  const std::string_view digits = without_plus(f);
   long long v = 0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
   if (ec != std::errc() || end != digits.data() + digits.size()) {
