@@ -150,6 +150,33 @@ TEST(HilMessages, PayloadsOfTheWrongSizeOrWithNaNAreRejected) {
   EXPECT_EQ(encode_payload(sp, buf, 4), 0u);  // too small a buffer is refused, not overrun
 }
 
+// A scan's timing is a value domain too: no negative durations, a sweep no longer than the
+// revolution it is part of, a revolution of at most a minute (as a log's PARAM). Through its
+// CRC, a beam interval of 2^62 us would overflow the stamp of the scan's middle beam.
+TEST(HilMessages, ScanTimingOutsideItsDomainIsMalformed) {
+  static uint8_t buf[kHilMaxPayload];
+  static LaserScan out;
+  struct Case {
+    const char* name;
+    int64_t period_us, interval_us;
+    Status status;
+  } cases[] = {
+      {"as a UTM-30LX", 25'000, 17, Status::kOk},
+      {"timing unknown", 0, 0, Status::kOk},
+      {"negative period", -25'000, 17, Status::kMalformed},
+      {"negative interval", 25'000, -17, Status::kMalformed},
+      {"sweep longer than the revolution", 25'000, 24, Status::kMalformed},
+      {"interval of 2^62 us", int64_t{1} << 62, int64_t{1} << 62, Status::kMalformed},
+      {"period over a minute", 60'000'001, 17, Status::kMalformed},
+  };
+  for (const Case& c : cases) {
+    LaserScan in = make_scan();
+    in.scan_period = Duration::from_us(c.period_us);
+    in.beam_interval = Duration::from_us(c.interval_us);
+    EXPECT_EQ(decode_payload(buf, encode_payload(in, buf, sizeof(buf)), out), c.status) << c.name;
+  }
+}
+
 TEST(HilMessages, StatusAndArmRoundTrip) {
   uint8_t buf[64];
   FlightStatus st;

@@ -96,6 +96,16 @@ Eigen::Vector3f get_vec3(Reader& r) {
   return v;
 }
 
+// No negative durations, a sweep (beam_count intervals) within its revolution, and a
+// revolution of at most a minute (as a log's PARAM allows): the stack adds intervals times a
+// beam index to stamps, which a wild value would overflow.
+bool scan_timing_in_domain(const LaserScan& m) {
+  constexpr int64_t kMaxScanPeriodUs = 60'000'000;
+  const int64_t period = m.scan_period.us, interval = m.beam_interval.us;
+  if (period < 0 || period > kMaxScanPeriodUs || interval < 0) return false;
+  return interval <= period && interval * static_cast<int64_t>(m.beam_count) <= period;
+}
+
 }  // namespace
 
 std::size_t encode_payload(const LaserScan& m, uint8_t* out, std::size_t cap) {
@@ -124,7 +134,8 @@ Status decode_payload(const uint8_t* p, std::size_t size, LaserScan& out) {
   if (n > kMaxBeams) return Status::kMalformed;
   out.beam_count = n;
   for (std::size_t i = 0; i < n; ++i) out.range_mm[i] = r.u16();
-  return r.finish();
+  const Status s = r.finish();
+  return ok(s) && !scan_timing_in_domain(out) ? Status::kMalformed : s;
 }
 
 std::size_t encode_payload(const ImuSample& m, uint8_t* out, std::size_t cap) {

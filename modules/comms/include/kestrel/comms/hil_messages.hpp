@@ -3,7 +3,8 @@
 // IEEE-754 bit patterns). Simulator -> firmware: laser scans, IMU samples, altitude, autopilot
 // status. Firmware -> simulator: attitude set-points and arm/disarm. Decoding checks every
 // length and value domain: a payload that does not fit its type is kMalformed, a non-finite
-// float kNotFinite.
+// float kNotFinite. A scan's timing has a domain too: no negative durations, its sweep within
+// a revolution of at most a minute.
 #include <cstddef>
 #include <cstdint>
 
