@@ -88,6 +88,26 @@ TEST(UdpLink, DatagramsBothWays) {
   EXPECT_EQ(a.connect_peer("bad", 1), Status::kInvalidArgument);
 }
 
+// An empty datagram is a datagram, not the end of a stream: UDP has no end of stream, and a
+// peer (or anyone who spoofs it) sending zero bytes must not make the link look closed.
+TEST(UdpLink, EmptyDatagramIsNotTheEndOfTheLink) {
+  UdpLink a, b;
+  ASSERT_EQ(a.open("127.0.0.1", 0), Status::kOk);
+  ASSERT_EQ(b.open("127.0.0.1", 0), Status::kOk);
+  ASSERT_EQ(a.connect_peer("127.0.0.1", b.local_port()), Status::kOk);
+  ASSERT_EQ(b.connect_peer("127.0.0.1", a.local_port()), Status::kOk);
+  const uint8_t ping[4] = {'p', 'i', 'n', 'g'};
+  ASSERT_TRUE(b.write(ping, 0).ok());
+  ASSERT_TRUE(b.write(ping, 4).ok());
+  ASSERT_EQ(a.wait_readable(Duration::from_ms(1000)), Status::kOk);
+  uint8_t buf[16] = {};
+  const Result<std::size_t> empty = a.read(buf, sizeof buf);
+  ASSERT_TRUE(empty.ok()) << "status " << static_cast<int>(empty.status());
+  EXPECT_EQ(empty.value(), 0u);
+  ASSERT_EQ(read_all(a, buf, 4), 4u);
+  EXPECT_EQ(std::memcmp(buf, ping, 4), 0);
+}
+
 // A timeout already past (a deadline minus a clock that jumped ahead) waits for nothing: poll()
 // would take a negative one as "forever", and the caller would hang on a silent peer.
 TEST(FdLink, TimeoutInThePastDoesNotWaitForever) {

@@ -22,6 +22,7 @@ Status UdpLink::open(const char* local_ipv4, uint16_t local_port) {
   }
   local_port_ = ntohs(local.sin_port);
   reset(fd);
+  zero_read_is_eof_ = false;  // UDP has no end of stream: 0 bytes read is an empty datagram
   return Status::kOk;
 }
 

@@ -28,7 +28,8 @@ class FdLink : public hal::Link {
  protected:
   void reset(int fd);
   // A stream socket reads 0 bytes only at end of stream; a serial line in raw mode with
-  // VMIN = VTIME = 0 reads 0 whenever nothing is waiting, which is not a hang-up.
+  // VMIN = VTIME = 0 reads 0 whenever nothing is waiting, which is not a hang-up; a datagram
+  // socket reads 0 for an empty datagram.
   bool zero_read_is_eof_ = true;
 
  private:
