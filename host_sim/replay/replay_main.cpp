@@ -171,6 +171,12 @@ int main(int argc, char** argv) {
   static ScanMatcher matcher(params, g_map_a, g_map_b, true);
   Pose2 start;
   if (scans[0].has_reference) start = scans[0].reference.cast<float>();
+  if (!start.finite()) {
+    // A finite double the float start pose cannot hold: the log's fault, not the matcher's.
+    std::fprintf(stderr, "kestrel-replay: %s: the first scan's reference pose (%g, %g) is beyond a float's range\n",
+                 log.c_str(), scans[0].reference.x, scans[0].reference.y);
+    return 2;
+  }
   if (!ok(matcher.configure(params, start))) {
     std::fprintf(stderr, "kestrel-replay: bad matcher configuration\n");
     return 1;
