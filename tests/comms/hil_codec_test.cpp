@@ -118,6 +118,28 @@ TEST(HilCodec, AFrameWithADamagedSyncIsCountedAsSkippedBytes) {
   }
 }
 
+// A UART overrun drops a byte or two: the frame that lost them runs on into the next one's sync
+// for its CRC and is dropped; the next frame, whose sync that was, must still decode.
+TEST(HilCodec, AFrameShortOfAByteOrTwoCostsOnlyItself) {
+  uint8_t payload[64], frame[128], stream[512];
+  AltimeterSample alt;
+  alt.stamp = TimeUs::from_us(7);
+  alt.height_m = 1.25f;
+  const std::size_t p = encode_payload(alt, payload, sizeof(payload));
+  const std::size_t f = hil_encode(static_cast<uint8_t>(HilType::kAltitude), payload, p, frame, sizeof(frame));
+  for (const std::size_t lost : {std::size_t{1}, std::size_t{2}}) {
+    for (const std::size_t at : {std::size_t{6}, f - 1 - lost}) {  // in the payload, or the CRC itself
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < f; ++i)
+        if (i < at || i >= at + lost) stream[n++] = frame[i];
+      for (int k = 0; k < 3; ++k, n += f) std::memcpy(stream + n, frame, f);
+      HilDecoder d;
+      EXPECT_EQ(feed(d, stream, n).frames, 3) << lost << " lost at " << at;
+      EXPECT_EQ(d.crc_errors(), 1u) << lost << " lost at " << at;
+    }
+  }
+}
+
 // The header is counted as a length error; the bytes after it, which the decoder cannot tell
 // from noise, as skipped.
 TEST(HilCodec, ImpossibleLengthIsDroppedAndCounted) {

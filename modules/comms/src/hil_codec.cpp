@@ -77,6 +77,13 @@ bool HilDecoder::push(uint8_t b) {
       received_ = length_;
       if (sent != crc_) {
         ++crc_errors_;
+        // A frame short of a byte or two (a UART overrun) took the next frame's sync for its
+        // CRC: that frame starts here, and must not be lost with this one.
+        if (sent == (kHilSync0 | (kHilSync1 << 8))) {
+          state_ = State::kType;
+        } else if (b == kHilSync0) {
+          state_ = State::kSync1;
+        }
         return false;
       }
       ++frames_;
