@@ -31,8 +31,9 @@ std::unique_ptr<sim::Mission> make_hil_bridge(const sim::MissionOptions& options
       }
     } else if (key == "wait_s") {
       wait_s = std::strtod(value.c_str(), &end);
-      if (end == value.c_str() || *end != '\0' || !(wait_s > 0)) {
-        error = "wait_s: '" + value + "' is not a positive number";
+      // At most a day: Duration::from_s of a wilder value overflows its microseconds.
+      if (end == value.c_str() || *end != '\0' || !(wait_s > 0 && wait_s <= 86400)) {
+        error = "wait_s: '" + value + "' is not a number of seconds in (0, 86400]";
         return nullptr;
       }
     } else {
