@@ -55,7 +55,13 @@ class Reader {
     }
     return p_[n_++];
   }
-  uint16_t u16() { return static_cast<uint16_t>(u8() | (u8() << 8)); }
+  uint16_t u16() {
+    // Two statements: the operands of | are unsequenced, so one expression may read the high
+    // byte first on another compiler.
+    const uint8_t lo = u8();
+    const uint8_t hi = u8();
+    return static_cast<uint16_t>(lo | (hi << 8));
+  }
   uint32_t u32() {
     uint32_t v = 0;
     for (int i = 0; i < 4; ++i) v |= static_cast<uint32_t>(u8()) << (8 * i);
