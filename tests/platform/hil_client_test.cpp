@@ -9,6 +9,7 @@
 #include "kestrel/comms/hil_messages.hpp"
 #include "kestrel/core/alloc_guard.hpp"
 #include "kestrel/platform/linux/tcp_link.hpp"
+#include "endless_link.hpp"
 
 namespace kestrel::platform {
 namespace {
@@ -230,24 +231,9 @@ TEST(HilClient, DroppedStatusFrameLeavesTheUnreadOneIntact) {
   EXPECT_EQ(hil.poll_status(got), Status::kNoData);
 }
 
-// A link that always has bytes (a peer that never pauses: a confused bridge, noise on a
-// serial line), up to `limit` reads so that a test of the unbounded pump still ends.
-class EndlessLink final : public hal::Link {
- public:
-  Result<std::size_t> write(const uint8_t*, std::size_t size) override { return size; }
-  Result<std::size_t> read(uint8_t* out, std::size_t capacity) override {
-    if (reads == limit) return std::size_t{0};
-    ++reads;
-    for (std::size_t i = 0; i < capacity; ++i) out[i] = 0x00;  // no sync byte: all skipped
-    return capacity;
-  }
-  long reads = 0;
-  long limit = 100'000;
-};
-
-// pump() returns after a bounded amount of such a stream, and the loop gets its tick.
+// pump() returns after a bounded amount of an endless stream, and the loop gets its tick.
 TEST(HilClient, PumpReturnsWhileThePeerFloods) {
-  static EndlessLink link;
+  static test::EndlessLink link(0x00);  // no sync byte: all skipped
   static HilClient hil(link, board_clock, {}, Duration::from_ms(5));
   EXPECT_EQ(hil.pump(), Status::kOk);
   EXPECT_LT(link.reads, 1000);  // 51.2 MB read before returning, without the bound

@@ -12,6 +12,7 @@
 
 #include "kestrel/platform/linux/linux_clock.hpp"
 #include "kestrel/platform/linux/serial_port.hpp"
+#include "endless_link.hpp"
 
 namespace kestrel::platform {
 namespace {
@@ -90,24 +91,9 @@ TEST(HokuyoScip, RequestsScansAndDecodesThem) {
   EXPECT_EQ(laser.decoder().sum_errors(), 0u);
 }
 
-// A link that always has bytes (a device that never pauses), up to `limit` reads so that a
-// test of the unbounded pump still ends.
-class EndlessLink final : public hal::Link {
- public:
-  Result<std::size_t> write(const uint8_t*, std::size_t size) override { return size; }
-  Result<std::size_t> read(uint8_t* out, std::size_t capacity) override {
-    if (reads == limit) return std::size_t{0};
-    ++reads;
-    for (std::size_t i = 0; i < capacity; ++i) out[i] = 'x';
-    return capacity;
-  }
-  long reads = 0;
-  long limit = 100'000;
-};
-
-// pump() returns after a bounded amount of such a stream, and the loop gets its tick.
+// pump() returns after a bounded amount of an endless stream, and the loop gets its tick.
 TEST(HokuyoScip, PumpReturnsWhileTheDeviceFloods) {
-  EndlessLink link;
+  test::EndlessLink link('x');
   ManualTimeSource clock;
   static HokuyoScip laser(link, clock, HokuyoModel::urg04lx());
   EXPECT_EQ(laser.pump(), Status::kOk);
