@@ -330,21 +330,9 @@ struct TurningScan {
 TurningScan turning_scan(const SegmentWorld& w, const LaserModel& m, const Pose2& pose, float turn_per_beam) {
   TurningScan t;
   t.raw = w.scan(m, pose.x, pose.y, pose.theta);
-  t.points.angle_step_rad = std::fabs(t.raw.angle_step_rad);
-  t.points.sweep_dtheta_rad = turn_per_beam;
-  for (uint16_t i = 0; i < t.raw.beam_count; ++i) {
-    const float turned = static_cast<float>(i) * turn_per_beam;
-    const uint16_t r = w.scan(m, pose.x, pose.y, pose.theta + turned).range_mm[i];
-    t.raw.range_mm[i] = r;
-    if (!LaserScan::is_return(r) || r >= t.raw.max_range_mm) continue;
-    const float a = t.raw.angle_of(i) + turned;
-    ScanPoints& p = t.points;
-    p.x[p.count] = 1e-3f * r * std::cos(a);
-    p.y[p.count] = 1e-3f * r * std::sin(a);
-    p.range_mm[p.count] = r;
-    p.beam[p.count] = i;
-    ++p.count;
-  }
+  for (uint16_t i = 0; i < t.raw.beam_count; ++i)
+    t.raw.range_mm[i] = w.scan(m, pose.x, pose.y, pose.theta + static_cast<float>(i) * turn_per_beam).range_mm[i];
+  t.points = test::points_of_scan(t.raw, turn_per_beam);
   return t;
 }
 

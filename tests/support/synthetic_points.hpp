@@ -8,14 +8,17 @@
 
 namespace kestrel::test {
 
-inline scan_matching::ScanPoints scan_points(const SegmentWorld& w, const LaserModel& m, const Pose2& sensor) {
-  const LaserScan s = w.scan(m, sensor.x, sensor.y, sensor.theta);
+// A scan's returns as points. turn_per_beam: the sensor turned this much further round with
+// each beam (a scan taken turning), and the points are deskewed to the first beam's heading,
+// as ScanMatcher::deskew leaves them (sweep_dtheta_rad says so).
+inline scan_matching::ScanPoints points_of_scan(const LaserScan& s, float turn_per_beam = 0.0f) {
   scan_matching::ScanPoints p;
   p.angle_step_rad = std::fabs(s.angle_step_rad);
+  p.sweep_dtheta_rad = turn_per_beam;
   for (uint16_t i = 0; i < s.beam_count; ++i) {
     const uint16_t r = s.range_mm[i];
     if (!LaserScan::is_return(r) || r >= s.max_range_mm) continue;
-    const float a = s.angle_of(i);
+    const float a = s.angle_of(i) + static_cast<float>(i) * turn_per_beam;
     p.x[p.count] = 1e-3f * r * std::cos(a);
     p.y[p.count] = 1e-3f * r * std::sin(a);
     p.range_mm[p.count] = r;
@@ -23,6 +26,10 @@ inline scan_matching::ScanPoints scan_points(const SegmentWorld& w, const LaserM
     ++p.count;
   }
   return p;
+}
+
+inline scan_matching::ScanPoints scan_points(const SegmentWorld& w, const LaserModel& m, const Pose2& sensor) {
+  return points_of_scan(w.scan(m, sensor.x, sensor.y, sensor.theta));
 }
 
 }  // namespace kestrel::test
