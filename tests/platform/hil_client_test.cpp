@@ -231,6 +231,46 @@ TEST(HilClient, DroppedStatusFrameLeavesTheUnreadOneIntact) {
   EXPECT_EQ(hil.poll_status(got), Status::kNoData);
 }
 
+// The same for scans: a scan frame dropped (its timing outside its domain, or a stamp refused)
+// leaves the good one not yet read, and is not counted as overwriting it; a good one is.
+TEST(HilClient, DroppedScanFrameLeavesTheUnreadOneIntact) {
+  Pair pair;
+  static HilClient hil(pair.client, board_clock, {}, Duration::from_ms(5));
+  static LaserScan good;
+  good.stamp = TimeUs::from_us(1000);
+  good.beam_count = 3;
+  good.range_mm[2] = 777;
+  send_msg(pair.server, HilType::kLaserScan, good);
+  static LaserScan bad;
+  bad = good;
+  bad.stamp = TimeUs::from_us(2000);
+  bad.range_mm[2] = 111;
+  bad.beam_interval = Duration::from_us(-1);  // no such sweep
+  send_msg(pair.server, HilType::kLaserScan, bad);
+  bad.beam_interval = {};
+  bad.stamp = TimeUs::from_s(7200);  // an hour past the first: refused
+  send_msg(pair.server, HilType::kLaserScan, bad);
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 3; }));
+  EXPECT_EQ(hil.counters().malformed, 1u);
+  EXPECT_EQ(hil.counters().bad_stamps, 1u);
+  EXPECT_EQ(hil.counters().overwritten_scans, 0u);
+  static LaserScan got;
+  ASSERT_EQ(take(hil, got), Status::kOk);
+  EXPECT_EQ(got.range_mm[2], 777);
+  EXPECT_EQ(got.stamp, board_clock.now());  // the good frame's own stamp, mapped
+  EXPECT_EQ(take(hil, got), Status::kNoData);
+
+  good.stamp = TimeUs::from_us(3000);
+  send_msg(pair.server, HilType::kLaserScan, good);
+  good.stamp = TimeUs::from_us(4000);
+  good.range_mm[2] = 888;
+  send_msg(pair.server, HilType::kLaserScan, good);
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 5; }));
+  EXPECT_EQ(hil.counters().overwritten_scans, 1u);
+  ASSERT_EQ(take(hil, got), Status::kOk);
+  EXPECT_EQ(got.range_mm[2], 888);
+}
+
 // pump() returns after a bounded amount of an endless stream, and the loop gets its tick.
 TEST(HilClient, PumpReturnsWhileThePeerFloods) {
   static test::EndlessLink link(0x00);  // no sync byte: all skipped

@@ -30,17 +30,19 @@ void HilClient::dispatch(TimeUs arrival) {
   const uint8_t* p = decoder_.payload();
   const std::size_t n = decoder_.size();
   switch (static_cast<HilType>(decoder_.type())) {
-    case HilType::kLaserScan:
-      if (scan_fresh_) ++counters_.overwritten_scans;
-      scan_fresh_ = false;
-      if (comms::decode_payload(p, n, scan_) != Status::kOk) {
+    case HilType::kLaserScan: {
+      LaserScan& incoming = scans_[newest_ ^ 1];
+      if (comms::decode_payload(p, n, incoming) != Status::kOk) {
         ++counters_.malformed;
-      } else if (!peer_clock_.observe(scan_.stamp, arrival)) {
+      } else if (!peer_clock_.observe(incoming.stamp, arrival)) {
         ++counters_.bad_stamps;
       } else {
+        if (scan_fresh_) ++counters_.overwritten_scans;
+        newest_ ^= 1;
         scan_fresh_ = true;
       }
       return;
+    }
     case HilType::kImu: {
       ImuSample s;
       if (comms::decode_payload(p, n, s) != Status::kOk) {
@@ -88,8 +90,8 @@ void HilClient::dispatch(TimeUs arrival) {
 
 Status HilClient::poll(LaserScan& out) {
   if (!scan_fresh_) return Status::kNoData;
-  out = scan_;
-  out.stamp = peer_clock_.to_board(scan_.stamp);
+  out = scans_[newest_];
+  out.stamp = peer_clock_.to_board(scans_[newest_].stamp);
   scan_fresh_ = false;
   return Status::kOk;
 }

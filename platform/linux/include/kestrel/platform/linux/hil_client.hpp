@@ -11,6 +11,7 @@
 // clock through one DeviceClock for the link (core/device_clock.hpp), as the Hokuyo driver
 // does its sensor's. Unmapped, a simulator's scans looked hours old to kestrel-fw, whose
 // flight home then held still until it stalled and landed where it was.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -79,7 +80,11 @@ class HilClient final : public hal::LaserScanner, public hal::Imu, public hal::A
   comms::HilDecoder decoder_;
   RingBuffer<ImuSample, 64> imu_queue_;
   RingBuffer<AltimeterSample, 8> altitude_queue_;
-  LaserScan scan_;  // the newest complete scan
+  // Two slots: a frame is decoded into the one not holding the newest good scan, and becomes
+  // the newest only once it passes, so a dropped frame cannot wipe a scan not yet read (a
+  // LaserScan is 3 KB: too large for the loop's stack).
+  std::array<LaserScan, 2> scans_{};
+  std::size_t newest_ = 0;
   bool scan_fresh_ = false;
   FlightStatus status_;
   bool status_fresh_ = false;
