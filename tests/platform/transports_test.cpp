@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <limits>
 #include <thread>
 
 #include "kestrel/platform/linux/serial_port.hpp"
@@ -132,6 +133,17 @@ TEST(FdLink, TimeoutInThePastDoesNotWaitForever) {
   EXPECT_EQ(listener.accept(accepted, Duration::from_ms(-5)), Status::kTimeout);
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(200));
   late.join();
+}
+
+// poll()'s milliseconds: never negative (forever), a part of a millisecond waits a whole one
+// rather than not at all, and a wait longer than an int of milliseconds is the longest there is.
+TEST(FdLink, PollTimeoutIsRoundedUpAndBounded) {
+  EXPECT_EQ(poll_timeout_ms(Duration::from_ms(-5)), 0);
+  EXPECT_EQ(poll_timeout_ms(Duration{}), 0);
+  EXPECT_EQ(poll_timeout_ms(Duration::from_us(500)), 1);
+  EXPECT_EQ(poll_timeout_ms(Duration::from_us(1000)), 1);
+  EXPECT_EQ(poll_timeout_ms(Duration::from_us(1001)), 2);
+  EXPECT_EQ(poll_timeout_ms(Duration::from_s(1e7)), std::numeric_limits<int>::max());
 }
 
 TEST(SerialPort, PseudoTerminalPairCarriesBytes) {

@@ -18,7 +18,7 @@ Status set_nonblocking(int fd) {
 
 int poll_timeout_ms(Duration timeout) {
   if (timeout.us <= 0) return 0;
-  const int64_t ms = timeout.us / 1000;
+  const int64_t ms = timeout.us / 1000 + (timeout.us % 1000 != 0);  // up: 0.5 ms is no busy poll
   return ms > std::numeric_limits<int>::max() ? std::numeric_limits<int>::max() : static_cast<int>(ms);
 }
 

@@ -39,8 +39,8 @@ class FdLink : public hal::Link {
 // Puts a descriptor in non-blocking mode.
 Status set_nonblocking(int fd);
 
-// `timeout` as poll()'s milliseconds: one already past waits for nothing and a longer one than
-// an int holds is cut to the longest it does, since poll() takes any negative as "forever".
+// `timeout` as poll()'s milliseconds, rounded up: one already past waits for nothing and a longer
+// one than an int holds is cut to the longest it does, since poll() takes any negative as "forever".
 int poll_timeout_ms(Duration timeout);
 
 }  // namespace kestrel::platform
