@@ -131,6 +131,9 @@ TEST(HomeFix, SearchesWhileExploringWithinItsOwnRadiusWhenAsked) {
   Pose2 truth{1.6f, 0.4f, 2.6f};
   for (int i = 0; i < 20; ++i) h.scan(truth, {truth.x + 4.5f, truth.y, truth.theta}, false);  // 6 m out
   EXPECT_EQ(h.fix->counters().searches, 0u);
+  // Landed or coming down (not at flight altitude): the laser sees what it flies over.
+  for (int i = 0; i < 20; ++i) h.scan(truth, truth, false, /*at_altitude=*/false);
+  EXPECT_EQ(h.fix->counters().searches, 0u);
   const Pose2 drift{1.2f, -0.9f, 0.08f};  // believed = drift * truth: about 2.5 m from home
   PoseMeasurement2 out;
   for (int i = 0; i < 30 && !h.fix->take(out); ++i) {

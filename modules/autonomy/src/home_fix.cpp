@@ -10,8 +10,9 @@ Status validate(const HomeFixConfig& c) {
   if (!in(c.survey_rad, 0.0f, 12.5f) || !in(c.frontier_survey_rad, 0.0f, 12.5f) ||
       !in(c.home_survey_rad, 0.0f, 12.5f) || !in(c.reference_window_s, 0.0f, 600.0f) ||
       !in(c.reference_spacing_m, 0.1f, 20.0f) || !in(c.reference_turn_rad, 0.05f, 3.2f) ||
-      !in(c.radius_m, 0.0f, 12.0f) || !in(c.explore_radius_m, 0.0f, 12.0f) || !in(c.period_s, 0.05f, 60.0f) || !in(c.agree_m, 0.01f, 2.0f) ||
-      !in(c.agree_rad, 0.001f, 1.0f) || !in(c.view_change_m, 0.0f, 10.0f) || !in(c.view_change_rad, 0.0f, 3.2f))
+      !in(c.radius_m, 0.0f, 12.0f) || !in(c.explore_radius_m, 0.0f, 12.0f) ||
+      !in(c.period_s, 0.05f, 60.0f) || !in(c.agree_m, 0.01f, 2.0f) || !in(c.agree_rad, 0.001f, 1.0f) ||
+      !in(c.view_change_m, 0.0f, 10.0f) || !in(c.view_change_rad, 0.0f, 3.2f))
     return Status::kInvalidArgument;
   return Status::kOk;
 }
@@ -70,8 +71,11 @@ void HomeFix::offer(const scan_matching::ScanPoints& points, const LaserScan& sc
     return;
   }
   const float from_home = std::hypot(pose.x - home_.x, pose.y - home_.y);
+  // Not flying home, only while exploring at altitude (may_reference): landed, or coming down
+  // in a failsafe, the laser sees what the vehicle flies over.
   const bool near = flying_home ? from_home <= config_.radius_m
-                                : config_.explore_radius_m > 0.0f && from_home <= config_.explore_radius_m;
+                                : may_reference && config_.explore_radius_m > 0.0f &&
+                                      from_home <= config_.explore_radius_m;
   if (!near) return;
   if (searched_ && (stamp - last_search_).seconds() < static_cast<double>(config_.period_s)) return;
   if (hand_over(points, scan, pose, false)) {

@@ -14,7 +14,8 @@
 // the spot after take-off, survey_rad, gives five of them all round home; the frontier
 // explorer's flights, which do not turn (frontier_survey_rad), take them along their first
 // path) and, flying home within radius_m of home (and holding and landing there), one scan
-// every period_s to search; take() hands back a confirmed fix for NavFilter::apply_correction.
+// every period_s to search (exploring too, within explore_radius_m, when that is not 0);
+// take() hands back a confirmed fix for NavFilter::apply_correction.
 // Level 3 (background_step()) draws and searches (scan_matching/relocaliser.hpp). One slot each
 // way; neither side waits.
 //
@@ -75,7 +76,7 @@ Status validate(const HomeFixConfig& c);
 // Written by background_step() only (level 3); read once it is idle, or at the end of a run.
 struct HomeFixCounters {
   uint32_t references = 0;   // reference scans drawn
-  uint32_t searches = 0;     // scans searched flying home
+  uint32_t searches = 0;     // scans searched flying home (and exploring: explore_radius_m)
   uint32_t found = 0;        // searches that gave a fix (scan_matching::RelocaliseOutcome::kFixed)
   uint32_t no_fit = 0;       // ...that found no pose the reference explains (kNoFit, kBadInput)
   uint32_t no_gain = 0;      // ...whose best pose was not clearly better than the estimate's
@@ -93,8 +94,9 @@ class HomeFix {
 
   // Loop side, once per matched scan: `points` its returns (deskewed), `scan` the scan itself,
   // `pose` the filter's pose at its stamp, `flying_home` whether the mission is on its way home
-  // (or turning and landing there), `may_reference` whether it may be a reference scan (the
-  // vehicle at flight altitude: on the ground the laser sees furniture it flies over).
+  // (or turning and landing there), `may_reference` whether it may be a reference scan, or be
+  // searched while exploring (explore_radius_m): taking off or exploring, at flight altitude
+  // (on the ground the laser sees furniture it flies over).
   void offer(const scan_matching::ScanPoints& points, const LaserScan& scan, const Pose2& pose, bool flying_home,
              bool may_reference);
   // Loop side: true with `fix` filled (the pose at a scan's stamp) when a confirmed fix waits.
