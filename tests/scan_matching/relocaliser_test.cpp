@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <span>
+#include <vector>
 
 #include "kestrel/core/prng.hpp"
 #include "glass_window_world.hpp"
@@ -327,12 +328,19 @@ struct TurningScan {
   LaserScan raw;
   ScanPoints points;
 };
-TurningScan turning_scan(const SegmentWorld& w, const LaserModel& m, const Pose2& pose, float turn_per_beam) {
+// ...and flying (dx, dy per beam, in the sensor frame at the stamp).
+TurningScan turning_scan(const SegmentWorld& w, const LaserModel& m, const Pose2& pose, float turn_per_beam,
+                         float dx_per_beam = 0.0f, float dy_per_beam = 0.0f) {
   TurningScan t;
   t.raw = w.scan(m, pose.x, pose.y, pose.theta);
-  for (uint16_t i = 0; i < t.raw.beam_count; ++i)
-    t.raw.range_mm[i] = w.scan(m, pose.x, pose.y, pose.theta + static_cast<float>(i) * turn_per_beam).range_mm[i];
-  t.points = test::points_of_scan(t.raw, turn_per_beam);
+  const float c = std::cos(pose.theta), s = std::sin(pose.theta);
+  for (uint16_t i = 0; i < t.raw.beam_count; ++i) {
+    const auto k = static_cast<float>(i);
+    const float x = pose.x + k * (c * dx_per_beam - s * dy_per_beam);
+    const float y = pose.y + k * (s * dx_per_beam + c * dy_per_beam);
+    t.raw.range_mm[i] = w.scan(m, x, y, pose.theta + k * turn_per_beam).range_mm[i];
+  }
+  t.points = test::points_of_scan(t.raw, turn_per_beam, dx_per_beam, dy_per_beam);
   return t;
 }
 
@@ -360,6 +368,40 @@ TEST(Relocaliser, MarksFreeWhereATurningScansBeamsWent) {
     ASSERT_EQ(r.add_reference(t.points, {}, &t.raw), Status::kOk);
     EXPECT_FALSE(r.seen_free(3.0f * std::cos(beyond_fan), 3.0f * std::sin(beyond_fan)));
     EXPECT_TRUE(r.seen_free(3.0f * std::cos(fan_end - 0.05f), 3.0f * std::sin(fan_end - 0.05f)));
+  }
+}
+
+// A reference taken flying backwards and sideways (0.6 m back, 0.2 m left over the sweep, in
+// the sensor's frame) while heading 1 rad: each beam is walked from where the sensor was when
+// it was taken, turned into the world. The last beams start 0.6 m behind the stamp's pose, in
+// the laser's blind arc there: only a walk from their own origins marks the cells just ahead
+// of those origins. With the raw scan and with the deskewed points alone.
+TEST(Relocaliser, WalksEachBeamFromWhereTheSensorWas) {
+  SegmentWorld w;  // a 6 x 6 m room round the vehicle: every beam returns
+  w.add(-3, -3, 3, -3);
+  w.add(3, -3, 3, 3);
+  w.add(3, 3, -3, 3);
+  w.add(-3, 3, -3, -3);
+  const LaserModel m = LaserModel::urg04lx();
+  const Pose2 pose{0.0f, 0.0f, 1.0f};
+  const float dx = -0.6f / static_cast<float>(m.beams), dy = 0.2f / static_cast<float>(m.beams);
+  const TurningScan t = turning_scan(w, m, pose, 0.0f, dx, dy);
+  const float c = std::cos(pose.theta), s = std::sin(pose.theta);
+  // Just ahead of the last beams' origins, along them: behind the stamp's pose.
+  std::vector<std::array<float, 2>> starts;
+  for (uint16_t b = m.beams - 40; b < m.beams; b += 8) {
+    const auto k = static_cast<float>(b);
+    const float ox = pose.x + k * (c * dx - s * dy), oy = pose.y + k * (s * dx + c * dy);
+    const float along = pose.theta + t.raw.angle_of(b);
+    starts.push_back({ox + 0.3f * std::cos(along), oy + 0.3f * std::sin(along)});
+    const float back = std::atan2(starts.back()[1] - pose.y, starts.back()[0] - pose.x) - pose.theta;
+    ASSERT_GT(std::fabs(wrap_angle(back)), static_cast<float>(-m.first_angle()) + 0.05f);  // in the blind arc
+  }
+  for (const bool raw : {true, false}) {
+    Relocaliser r;
+    ASSERT_EQ(r.configure(RelocaliserParams{}, matcher_for(m)), Status::kOk);
+    ASSERT_EQ(r.add_reference(t.points, pose, raw ? &t.raw : nullptr), Status::kOk);
+    for (const auto& p : starts) EXPECT_TRUE(r.seen_free(p[0], p[1])) << "raw scan: " << raw;
   }
 }
 

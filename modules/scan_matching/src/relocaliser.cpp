@@ -20,9 +20,9 @@ bool walk_cells(const LikelihoodMap& map, const Pose2& pose, float angle, float 
   const float inv = 1.0f / map.resolution_m();
   // int32 range: locate() takes a guess only within half the map of the reference (the map's
   // centre), and the pose walked from is that guess moved within the search window (or a
-  // reference pose, within the map), so the start lies within a map's width of the map (at
-  // most 2047 cells); the walk adds at most two widths more. Three widths in Q16 cells are
-  // below 2^29.
+  // reference pose, within the map), plus under a metre of the sweep's motion
+  // (plausible_sweep), so the start lies within a map's width of the map (at most 2047
+  // cells); the walk adds at most two widths more. Three widths in Q16 cells are below 2^29.
   const auto steps = static_cast<int32_t>(std::min(reach_m * inv, 2.0f * static_cast<float>(map.dim())));
   auto x = static_cast<int32_t>(std::lround((pose.x - map.origin_x_m()) * inv * kOne));
   auto y = static_cast<int32_t>(std::lround((pose.y - map.origin_y_m()) * inv * kOne));
@@ -125,8 +125,9 @@ template <typename Beam>
 void Relocaliser::for_each_beam(const ScanPoints& pts, const LaserScan* scan, const Pose2& pose, Beam beam) const {
   const float margin = params_.see_through_margin_m;
   if (scan != nullptr && !scan->fan_well_formed()) scan = nullptr;
-  const uint16_t last_point_beam = pts.count > 0 ? pts.beam[pts.count - 1] : 0;
-  const bool sweep = plausible_sweep(pts, std::max<uint16_t>(scan != nullptr ? scan->beam_count : 0, last_point_beam));
+  uint16_t beams = scan != nullptr ? scan->beam_count : 0;  // the sweep's length, in beams
+  for (uint16_t i = 0; i < pts.count; ++i) beams = std::max<uint16_t>(beams, pts.beam[i] + 1);
+  const bool sweep = plausible_sweep(pts, beams);
   const float c = std::cos(pose.theta), s = std::sin(pose.theta);
   const float step_x = sweep ? c * pts.sweep_dx_m - s * pts.sweep_dy_m : 0.0f;  // world frame, per beam
   const float step_y = sweep ? s * pts.sweep_dx_m + c * pts.sweep_dy_m : 0.0f;
