@@ -112,6 +112,12 @@ TEST(EkfParams, ErrorsAreDescribedWithThePathOnce) {
   EXPECT_STREQ(buf, "a.params: unknown key 'x'");
   EXPECT_EQ(params::describe("a.params", err, buf, 4), 25);  // truncated, as snprintf
   EXPECT_STREQ(buf, "a.p");
+  // A path too long for the message, which is cut off inside it: named once all the same.
+  const std::string long_path = "/nonexistent/" + std::string(200, 'd') + "/ekf.params";
+  ASSERT_EQ(load_ekf_params(long_path.c_str(), p, err), Status::kIoError);
+  char wide[512];
+  params::describe(long_path.c_str(), err, wide, sizeof(wide));
+  EXPECT_EQ(std::string(wide).rfind("cannot open '/nonexistent/ddd", 0), 0u) << wide;
 }
 
 // Regression: a directory opens for reading and then fails to read, and that read error was not

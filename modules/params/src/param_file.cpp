@@ -25,11 +25,24 @@ Status fail(ParamError& error, int line, Status status, const char* fmt, std::st
 
 }  // namespace
 
+namespace {
+// Whether the message names the path: whole, or quoted and cut off at the message's end (a long
+// path does not fit in ParamError::message).
+bool names_path(const char* message, const char* path) {
+  if (path[0] == '\0') return false;
+  if (std::strstr(message, path) != nullptr) return true;
+  if (std::strlen(message) + 1 < sizeof(ParamError::message)) return false;  // not cut off
+  for (const char* q = std::strchr(message, '\''); q != nullptr; q = std::strchr(q + 1, '\'')) {
+    const std::size_t rest = std::strlen(q + 1);
+    if (rest > 0 && std::strncmp(q + 1, path, rest) == 0) return true;
+  }
+  return false;
+}
+}  // namespace
+
 int describe(const char* path, const ParamError& error, char* buf, std::size_t cap) {
   if (error.line > 0) return std::snprintf(buf, cap, "%s:%d: %s", path, error.line, error.message);
-  if (path[0] != '\0' && std::strstr(error.message, path) != nullptr) {
-    return std::snprintf(buf, cap, "%s", error.message);
-  }
+  if (names_path(error.message, path)) return std::snprintf(buf, cap, "%s", error.message);
   return std::snprintf(buf, cap, "%s: %s", path, error.message);
 }
 
