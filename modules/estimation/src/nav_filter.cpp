@@ -150,9 +150,12 @@ Status NavFilter::predict(const ImuSample& imu) {
     return Status::kTimeJump;
   }
   if (count_ > 0 && imu.stamp <= slot(count_ - 1).t) {
-    // Before the time the first pose set: the step would run backwards.
-    ++counters_.imu_time_backwards;
-    return Status::kTimeJump;
+    // In order, but before the time the first pose set (the pose was taken in ahead of the
+    // samples queued behind it): the state starts later, so there is nothing to step.
+    have_imu_ = true;
+    last_imu_t_ = imu.stamp;
+    ++counters_.imu_before_start;
+    return Status::kNoData;
   }
   // A gap is time between IMU samples. The newest slot is normally the previous sample; right
   // after a first pose older than the few samples taken in before it, it is the pose, and the

@@ -86,6 +86,7 @@ struct NavFilterCounters {
   uint32_t imu_not_finite = 0;
   uint32_t imu_out_of_range = 0;     // a component beyond kMaxAccelMps2 / kMaxGyroRadps
   uint32_t imu_time_backwards = 0;   // stamp not after the previous sample
+  uint32_t imu_before_start = 0;     // in order, but older than the first pose (arrived after it)
   uint32_t imu_gaps = 0;             // gaps above max_imu_gap_s (history restarted)
   uint32_t pose_updates = 0;
   uint32_t pose_rejected = 0;        // gated out (outliers)
@@ -110,11 +111,12 @@ struct NavFilterCounterField {
   const char* name;
   uint32_t NavFilterCounters::*member;
 };
-inline constexpr std::array<NavFilterCounterField, 19> kNavFilterCounterFields{{
+inline constexpr std::array<NavFilterCounterField, 20> kNavFilterCounterFields{{
     {"imu_samples", &NavFilterCounters::imu_samples},
     {"imu_not_finite", &NavFilterCounters::imu_not_finite},
     {"imu_out_of_range", &NavFilterCounters::imu_out_of_range},
     {"imu_time_backwards", &NavFilterCounters::imu_time_backwards},
+    {"imu_before_start", &NavFilterCounters::imu_before_start},
     {"imu_gaps", &NavFilterCounters::imu_gaps},
     {"pose_updates", &NavFilterCounters::pose_updates},
     {"pose_rejected", &NavFilterCounters::pose_rejected},
