@@ -165,6 +165,40 @@ TEST(HilClient, StampsAreMappedOntoTheBoardsClock) {
   EXPECT_EQ(hil.counters().bad_stamps, 1u);
 }
 
+// Regression (hil_hover with the CPU short): IMU samples queued while a late frame set the
+// offset, then read out after a quicker frame lowered it by more than their spacing, were
+// handed on before the sample read just before them, and the filter dropped them as time
+// running backwards. Pinned: the queue is read out in the peer's order on the board's clock.
+TEST(HilClient, QueuedSamplesStayInOrderWhenAQuickerFrameLowersTheOffset) {
+  Pair pair;
+  ManualTimeSource board{kBoardHour + Duration::from_ms(50)};
+  HilClient hil(pair.client, board, {}, Duration::from_ms(5));
+  for (int i = 0; i < 3; ++i) {  // stamped 0, 5, 10 ms, all arriving 50 ms past the hour
+    ImuSample s;
+    s.stamp = TimeUs::from_us(5000 * i);
+    send_msg(pair.server, HilType::kImu, s);
+  }
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 3; }));
+  ImuSample first;
+  ASSERT_EQ(hil.poll(first), Status::kOk);
+  EXPECT_EQ(first.stamp, kBoardHour + Duration::from_ms(40));
+  // Stamped 45 ms, arriving 51 ms past the hour: 34 ms quicker than the three before it.
+  board.set(kBoardHour + Duration::from_ms(51));
+  ImuSample quick;
+  quick.stamp = TimeUs::from_us(45'000);
+  send_msg(pair.server, HilType::kImu, quick);
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 4; }));
+  TimeUs last = first.stamp;
+  for (int i = 0; i < 3; ++i) {
+    ImuSample s;
+    ASSERT_EQ(hil.poll(s), Status::kOk);
+    EXPECT_GT(s.stamp, last) << i;
+    last = s.stamp;
+  }
+  EXPECT_NEAR(static_cast<double>((last - kBoardHour).us), 51'000.0, 5.0);  // back on the mapping
+  EXPECT_EQ(hil.counters().bad_stamps, 0u);
+}
+
 TEST(HilClient, SendsSetpointsAndArmCommands) {
   Pair pair;
   HilClient hil(pair.client, board_clock, {}, Duration::from_ms(5));

@@ -91,28 +91,29 @@ void HilClient::dispatch(TimeUs arrival) {
 Status HilClient::poll(LaserScan& out) {
   if (!scan_fresh_) return Status::kNoData;
   out = scans_[newest_];
-  out.stamp = peer_clock_.to_board(scans_[newest_].stamp);
+  out.stamp = scan_stamps_.to_board(peer_clock_, scans_[newest_].stamp);
   scan_fresh_ = false;
   return Status::kOk;
 }
 
-// Queued with the peer's stamps, mapped as they are read: see the header's note on time.
+// Queued with the peer's stamps, mapped as they are read, in the peer's order: see the
+// header's note on time.
 Status HilClient::poll(ImuSample& out) {
   if (!imu_queue_.pop(out)) return Status::kNoData;
-  out.stamp = peer_clock_.to_board(out.stamp);
+  out.stamp = imu_stamps_.to_board(peer_clock_, out.stamp);
   return Status::kOk;
 }
 
 Status HilClient::poll(AltimeterSample& out) {
   if (!altitude_queue_.pop(out)) return Status::kNoData;
-  out.stamp = peer_clock_.to_board(out.stamp);
+  out.stamp = altitude_stamps_.to_board(peer_clock_, out.stamp);
   return Status::kOk;
 }
 
 Status HilClient::poll_status(FlightStatus& out) {
   if (!status_fresh_) return Status::kNoData;
   out = status_;
-  out.stamp = peer_clock_.to_board(status_.stamp);
+  out.stamp = status_stamps_.to_board(peer_clock_, status_.stamp);
   status_fresh_ = false;
   return Status::kOk;
 }

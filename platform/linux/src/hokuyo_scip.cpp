@@ -55,7 +55,7 @@ void HokuyoScip::convert(TimeUs arrival) {
   const int64_t step_us = model_.scan_period.us / model_.steps_per_rev;
   const TimeUs sensor_stamp{unwrapped_ms_ * 1000};
   if (!sensor_clock_.observe(sensor_stamp, arrival)) return;  // a stamp not to be believed: no scan
-  scan_.stamp = sensor_clock_.to_board(sensor_stamp);
+  scan_.stamp = scan_stamps_.to_board(sensor_clock_, sensor_stamp);
   scan_.scan_period = model_.scan_period;
   scan_.beam_interval = Duration{step_us};
   scan_.first_angle_rad = g.first_angle_rad +

@@ -10,7 +10,8 @@
 // the way home, a measurement from the future), so every stamp is mapped onto the board's
 // clock through one DeviceClock for the link (core/device_clock.hpp), as the Hokuyo driver
 // does its sensor's. Unmapped, a simulator's scans looked hours old to kestrel-fw, whose
-// flight home then held still until it stalled and landed where it was.
+// flight home then held still until it stalled and landed where it was. Each stream keeps the
+// peer's order through the mapping, whose offset may fall between two reads (StreamStamps).
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include "kestrel/comms/hil_codec.hpp"
 #include "kestrel/core/device_clock.hpp"
 #include "kestrel/core/ring_buffer.hpp"
+#include "kestrel/core/stream_stamps.hpp"
 #include "kestrel/hal/altimeter.hpp"
 #include "kestrel/hal/flight_controller.hpp"
 #include "kestrel/hal/imu.hpp"
@@ -75,6 +77,8 @@ class HilClient final : public hal::LaserScanner, public hal::Imu, public hal::A
   hal::Link& link_;
   const TimeSource& clock_;
   DeviceClock peer_clock_;
+  // Each stream's own order kept through the mapping (core/stream_stamps.hpp).
+  StreamStamps imu_stamps_, scan_stamps_, altitude_stamps_, status_stamps_;
   hal::LaserGeometry geometry_;
   Duration imu_period_;
   comms::HilDecoder decoder_;

@@ -12,6 +12,7 @@
 
 #include "kestrel/comms/scip.hpp"
 #include "kestrel/core/device_clock.hpp"
+#include "kestrel/core/stream_stamps.hpp"
 #include "kestrel/core/time.hpp"
 #include "kestrel/hal/laser_scanner.hpp"
 #include "kestrel/hal/link.hpp"
@@ -62,6 +63,7 @@ class HokuyoScip final : public hal::LaserScanner {
   LaserScan scan_;
   bool fresh_ = false;
   DeviceClock sensor_clock_;  // core/device_clock.hpp
+  StreamStamps scan_stamps_;  // the sensor's order kept through a falling offset
   uint32_t last_sensor_ms_ = 0;
   int64_t unwrapped_ms_ = 0;
 };
