@@ -97,15 +97,21 @@ TEST(HilCodec, ResynchronisesAfterGarbageAndCorruption) {
   EXPECT_FLOAT_EQ(out.accel_mps2.z(), 9.81f);
 }
 
-// A frame whose sync pair is damaged never starts, so no CRC error counts it: its bytes are
-// counted as skipped instead, and the frame after it decodes.
-TEST(HilCodec, AFrameWithADamagedSyncIsCountedAsSkippedBytes) {
-  uint8_t payload[64], frame[128], stream[256];
+// A small frame (an altimeter sample) into `frame` (128 bytes); its size.
+std::size_t altitude_frame(uint8_t* frame) {
+  uint8_t payload[64];
   AltimeterSample alt;
   alt.stamp = TimeUs::from_us(7);
   alt.height_m = 1.25f;
   const std::size_t p = encode_payload(alt, payload, sizeof(payload));
-  const std::size_t f = hil_encode(static_cast<uint8_t>(HilType::kAltitude), payload, p, frame, sizeof(frame));
+  return hil_encode(static_cast<uint8_t>(HilType::kAltitude), payload, p, frame, 128);
+}
+
+// A frame whose sync pair is damaged never starts, so no CRC error counts it: its bytes are
+// counted as skipped instead, and the frame after it decodes.
+TEST(HilCodec, AFrameWithADamagedSyncIsCountedAsSkippedBytes) {
+  uint8_t frame[128], stream[256];
+  const std::size_t f = altitude_frame(frame);
   for (const std::size_t damaged : {std::size_t{0}, std::size_t{1}}) {
     std::memcpy(stream, frame, f);
     stream[damaged] ^= 0xFF;  // 0x5A, 0xA5: neither byte of the pair where it belongs
@@ -121,12 +127,8 @@ TEST(HilCodec, AFrameWithADamagedSyncIsCountedAsSkippedBytes) {
 // A UART overrun drops a byte or two: the frame that lost them runs on into the next one's sync
 // for its CRC and is dropped; the next frame, whose sync that was, must still decode.
 TEST(HilCodec, AFrameShortOfAByteOrTwoCostsOnlyItself) {
-  uint8_t payload[64], frame[128], stream[512];
-  AltimeterSample alt;
-  alt.stamp = TimeUs::from_us(7);
-  alt.height_m = 1.25f;
-  const std::size_t p = encode_payload(alt, payload, sizeof(payload));
-  const std::size_t f = hil_encode(static_cast<uint8_t>(HilType::kAltitude), payload, p, frame, sizeof(frame));
+  uint8_t frame[128], stream[512];
+  const std::size_t f = altitude_frame(frame);
   for (const std::size_t lost : {std::size_t{1}, std::size_t{2}}) {
     for (const std::size_t at : {std::size_t{6}, f - 1 - lost}) {  // in the payload, or the CRC itself
       std::size_t n = 0;
@@ -138,6 +140,30 @@ TEST(HilCodec, AFrameShortOfAByteOrTwoCostsOnlyItself) {
       EXPECT_EQ(d.crc_errors(), 1u) << lost << " lost at " << at;
     }
   }
+}
+
+// A damaged frame whose last CRC byte happens to be 0xA5 leaves the decoder hunting for the
+// 0x5A after it. That byte was the dropped frame's, counted with it as a CRC error: when the
+// hunt fails it must not be counted again as skipped. Only the noise byte after it is.
+TEST(HilCodec, ADroppedFramesLastByteIsNotCountedAgainAsSkipped) {
+  uint8_t frame[128], stream[512];
+  const std::size_t f = altitude_frame(frame);
+  std::memcpy(stream, frame, f);
+  ASSERT_NE(stream[f - 1], kHilSync0);
+  stream[f - 1] = kHilSync0;  // a wrong CRC, ending in the sync's first byte
+  stream[f] = 0x00;           // noise: no frame starts at that 0xA5
+  std::memcpy(stream + f + 1, frame, f);
+  HilDecoder d;
+  EXPECT_EQ(feed(d, stream, 2 * f + 1).frames, 1);
+  EXPECT_EQ(d.crc_errors(), 1u);
+  EXPECT_EQ(d.skipped_bytes(), 1u);
+  // And when the byte after it is another 0xA5, the dropped frame's byte is not counted either.
+  stream[f] = kHilSync0;
+  stream[f + 1] = 0x00;
+  std::memcpy(stream + f + 2, frame, f);
+  HilDecoder d2;
+  EXPECT_EQ(feed(d2, stream, 2 * f + 2).frames, 1);
+  EXPECT_EQ(d2.skipped_bytes(), 2u);  // the second 0xA5 and the noise
 }
 
 // The header is counted as a length error; the bytes after it, which the decoder cannot tell

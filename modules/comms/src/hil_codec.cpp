@@ -29,16 +29,20 @@ bool HilDecoder::push(uint8_t b) {
         ++skipped_bytes_;
       }
       return false;
-    case State::kSync1:
+    case State::kSync1: {
+      // The earlier 0xA5 is skipped unless it was a dropped frame's last byte (counted with it).
+      const uint32_t earlier = sync0_was_frame_byte_ ? 0u : 1u;
+      sync0_was_frame_byte_ = false;
       if (b == kHilSync1) {
         state_ = State::kType;
       } else if (b == kHilSync0) {
-        ++skipped_bytes_;  // the earlier 0xA5; this one may start the frame
+        skipped_bytes_ += earlier;  // this one may start the frame
       } else {
-        skipped_bytes_ += 2;
+        skipped_bytes_ += earlier + 1;
         state_ = State::kSync0;
       }
       return false;
+    }
     case State::kType:
       type_ = b;
       crc_ = crc16_ccitt(&b, 1);
@@ -83,6 +87,7 @@ bool HilDecoder::push(uint8_t b) {
           state_ = State::kType;
         } else if (b == kHilSync0) {
           state_ = State::kSync1;
+          sync0_was_frame_byte_ = true;
         }
         return false;
       }

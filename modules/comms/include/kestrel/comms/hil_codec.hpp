@@ -46,6 +46,7 @@ class HilDecoder {
   uint16_t length_ = 0;
   uint16_t received_ = 0;
   uint16_t crc_ = 0;
+  bool sync0_was_frame_byte_ = false;  // the 0xA5 awaiting its 0x5A ended a dropped frame
   std::array<uint8_t, kHilMaxPayload> buf_{};
   uint32_t crc_errors_ = 0;
   uint32_t length_errors_ = 0;
