@@ -73,12 +73,20 @@ TEST(TcpLink, ConnectionRefusedAndBadAddressAreErrors) {
   EXPECT_EQ(client.connect("not-an-ip", 80, Duration::from_ms(10)), Status::kInvalidArgument);
 }
 
-TEST(UdpLink, DatagramsBothWays) {
+// Two UDP links on loopback, each the other's peer.
+struct UdpPair {
   UdpLink a, b;
-  ASSERT_EQ(a.open("127.0.0.1", 0), Status::kOk);
-  ASSERT_EQ(b.open("127.0.0.1", 0), Status::kOk);
-  ASSERT_EQ(a.connect_peer("127.0.0.1", b.local_port()), Status::kOk);
-  ASSERT_EQ(b.connect_peer("127.0.0.1", a.local_port()), Status::kOk);
+  UdpPair() {
+    EXPECT_EQ(a.open("127.0.0.1", 0), Status::kOk);
+    EXPECT_EQ(b.open("127.0.0.1", 0), Status::kOk);
+    EXPECT_EQ(a.connect_peer("127.0.0.1", b.local_port()), Status::kOk);
+    EXPECT_EQ(b.connect_peer("127.0.0.1", a.local_port()), Status::kOk);
+  }
+};
+
+TEST(UdpLink, DatagramsBothWays) {
+  UdpPair p;
+  UdpLink &a = p.a, &b = p.b;
   const uint8_t ping[5] = {'p', 'i', 'n', 'g', 0};
   ASSERT_TRUE(a.write(ping, 5).ok());
   uint8_t buf[16] = {};
@@ -92,11 +100,8 @@ TEST(UdpLink, DatagramsBothWays) {
 // An empty datagram is a datagram, not the end of a stream: UDP has no end of stream, and a
 // peer (or anyone who spoofs it) sending zero bytes must not make the link look closed.
 TEST(UdpLink, EmptyDatagramIsNotTheEndOfTheLink) {
-  UdpLink a, b;
-  ASSERT_EQ(a.open("127.0.0.1", 0), Status::kOk);
-  ASSERT_EQ(b.open("127.0.0.1", 0), Status::kOk);
-  ASSERT_EQ(a.connect_peer("127.0.0.1", b.local_port()), Status::kOk);
-  ASSERT_EQ(b.connect_peer("127.0.0.1", a.local_port()), Status::kOk);
+  UdpPair p;
+  UdpLink &a = p.a, &b = p.b;
   const uint8_t ping[4] = {'p', 'i', 'n', 'g'};
   ASSERT_TRUE(b.write(ping, 0).ok());
   ASSERT_TRUE(b.write(ping, 4).ok());
