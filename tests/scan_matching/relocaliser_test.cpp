@@ -246,6 +246,34 @@ TEST(Relocaliser, DeclinesReturnsWhereTheReferenceSawThrough) {
   expect_near(fix.pose, truth, 0.06f, 0.02f);
 }
 
+// The share of returns where the references saw through is of the points the search judged
+// the pose on: points it cannot judge (beyond the map's inner square at some translation of the
+// window) neither dilute the share nor count. Twenty extra points 12 m east of home, which the
+// 30.7 m map holds only out to 10.9 m from home once the 4.5 m window is allowed for, leave the
+// refused fix's share, its judged points and its outcome as they were.
+TEST(Relocaliser, ReturnsInFreeIsAShareOfTheJudgedPointsOnly) {
+  Fixture f(test::glass_window_world(), LaserModel::urg04lx(), turn_at(2.0f, 7.5f));
+  const Pose2 truth{1.34f, 4.52f, 1.68f}, guess{truth.x, truth.y + 0.03f, truth.theta};
+  const LaserScan raw = f.w.scan(f.m, truth.x, truth.y, truth.theta);
+  ScanPoints pts = scan_points(f.w, f.m, truth);
+  const Relocalisation plain = f.r.locate(pts, guess, &raw);
+  ASSERT_EQ(plain.outcome, RelocaliseOutcome::kReturnsInFree);
+  ASSERT_GT(plain.returns_in_free, 0.05f);
+  const float c = std::cos(truth.theta), s = std::sin(truth.theta);
+  for (int i = 0; i < 20; ++i) {  // world (14, 7.5 +- 0.5): into the sensor frame
+    const float wx = 14.0f - truth.x, wy = 7.0f + 0.05f * static_cast<float>(i) - truth.y;
+    pts.x[pts.count] = c * wx + s * wy;
+    pts.y[pts.count] = -s * wx + c * wy;
+    pts.range_mm[pts.count] = 3999;
+    pts.beam[pts.count] = pts.beam[pts.count - 1];
+    ++pts.count;
+  }
+  const Relocalisation padded = f.r.locate(pts, guess, &raw);
+  EXPECT_EQ(padded.outcome, RelocaliseOutcome::kReturnsInFree);
+  EXPECT_EQ(padded.points, plain.points);
+  EXPECT_NEAR(padded.returns_in_free, plain.returns_in_free, 1e-6f);
+}
+
 TEST(Relocaliser, HoldsAFixedNumberOfReferenceScans) {
   Relocaliser r;
   const LaserModel m = LaserModel::urg04lx();
