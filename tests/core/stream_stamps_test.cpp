@@ -41,6 +41,21 @@ TEST(StreamStamps, ADevicesOwnStepBackIsHandedOnAsItIs) {
   EXPECT_EQ(s.to_board(clock, TimeUs::from_us(15'000)), kBoard + Duration::from_ms(5));
 }
 
+// A fall beyond DeviceClock::kMaxJumpUs is a clock stepped, not jitter: held at the last
+// stamp, the stream would stand still for the whole step. The stamp is handed on as mapped.
+TEST(StreamStamps, AFallBeyondAClockStepIsHandedOnAsMapped) {
+  DeviceClock clock;
+  StreamStamps s;
+  ASSERT_TRUE(clock.observe(TimeUs::from_us(0), kBoard + Duration::from_s(3.0)));
+  EXPECT_EQ(s.to_board(clock, TimeUs::from_us(0)), kBoard + Duration::from_s(3.0));
+  // The device's frames now arrive 2 s quicker (its clock was taken afresh): a run of them.
+  for (int i = 1; i <= DeviceClock::kReseedFrames; ++i)
+    (void)clock.observe(TimeUs::from_us(5000 * i), kBoard + Duration::from_s(1.0) + Duration::from_us(5000 * i));
+  ASSERT_LT(clock.offset_us(), (kBoard + Duration::from_s(2.0)).us);
+  EXPECT_EQ(s.to_board(clock, TimeUs::from_us(5000)), clock.to_board(TimeUs::from_us(5000)));
+  EXPECT_EQ(s.to_board(clock, TimeUs::from_us(10'000)), clock.to_board(TimeUs::from_us(10'000)));
+}
+
 // Property: over streams whose offset falls by random amounts between reads, the stamps handed
 // on rise strictly while the device's do, and never run ahead of the mapping by more than the
 // falls so far (nor lag it at all).

@@ -275,6 +275,19 @@ TEST(NavFilter, ImuSampleOlderThanTheFirstPoseIsBeforeTheStartNotTimeGoingBackwa
   EXPECT_EQ(filter->counters().imu_samples, 1u);
   EXPECT_EQ(filter->counters().imu_gaps, 0u);
   EXPECT_NEAR(filter->state().position_m.x(), 1.0f, 1e-3f);
+
+  // Dropped 50 ms before the start, a sample must not make the next one, 60 ms after the
+  // start, look a gap (110 ms) away: the step runs from the start, and a pose taken between
+  // is still in the history.
+  filter->reset();
+  ASSERT_EQ(filter->update_pose(pm), Status::kOk);
+  imu.stamp = TimeUs::from_us(950000);
+  EXPECT_EQ(filter->predict(imu), Status::kNoData);
+  imu.stamp = TimeUs::from_us(1060000);
+  EXPECT_EQ(filter->predict(imu), Status::kOk);
+  EXPECT_EQ(filter->counters().imu_gaps, 0u);
+  pm.stamp = TimeUs::from_us(1030000);
+  EXPECT_EQ(filter->update_pose(pm), Status::kOk);
 }
 
 // Regression: finite but absurd inputs used to be accepted. An IMU sample of 1e30 m/s^2 (or a

@@ -178,16 +178,23 @@ TEST(HilClient, QueuedSamplesStayInOrderWhenAQuickerFrameLowersTheOffset) {
     s.stamp = TimeUs::from_us(5000 * i);
     send_msg(pair.server, HilType::kImu, s);
   }
-  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 3; }));
+  AltimeterSample alt;  // and an altitude stamped 10 ms
+  alt.stamp = TimeUs::from_us(10'000);
+  send_msg(pair.server, HilType::kAltitude, alt);
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 4; }));
   ImuSample first;
   ASSERT_EQ(hil.poll(first), Status::kOk);
   EXPECT_EQ(first.stamp, kBoardHour + Duration::from_ms(40));
-  // Stamped 45 ms, arriving 51 ms past the hour: 34 ms quicker than the three before it.
+  // Stamped 45 ms, arriving 51 ms past the hour: 34 ms quicker than the frames before it.
   board.set(kBoardHour + Duration::from_ms(51));
   ImuSample quick;
   quick.stamp = TimeUs::from_us(45'000);
   send_msg(pair.server, HilType::kImu, quick);
-  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 4; }));
+  ASSERT_TRUE(pump_until(hil, pair.client, [&] { return hil.counters().frames == 5; }));
+  // Each stream keeps its own order: the altitude, the first of its stream, is mapped as it is
+  // (16 ms past the hour), and the IMU's next sample still comes after the IMU's first.
+  ASSERT_EQ(hil.poll(alt), Status::kOk);
+  EXPECT_NEAR(static_cast<double>((alt.stamp - kBoardHour).us), 16'000.0, 5.0);
   TimeUs last = first.stamp;
   for (int i = 0; i < 3; ++i) {
     ImuSample s;

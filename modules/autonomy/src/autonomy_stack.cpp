@@ -217,7 +217,9 @@ void AutonomyStack::imu_task(TimeUs now) {
     }
     ++counters_.imu_samples;
     const Status p = filter_.predict(s);
-    if (p == Status::kOk || p == Status::kNoData) {
+    // Stored before the first pose, a sample is taken; after it, kNoData is one dropped as
+    // before the state's start, and a stream that stays there is not alive.
+    if (p == Status::kOk || (p == Status::kNoData && !filter_.initialised())) {
       watchdog_.imu_alive(now);
     } else {
       ++counters_.imu_errors;

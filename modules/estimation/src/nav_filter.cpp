@@ -181,7 +181,9 @@ Status NavFilter::predict(const ImuSample& imu) {
     return Status::kNoData;
   }
   const float dt = static_cast<float>((imu.stamp - slot(count_ - 1).t).seconds());
-  const float gap = had_sample ? static_cast<float>(since_previous_sample.seconds()) : dt;
+  // The shorter of the two: a sample dropped as before the start (imu_before_start) is a sample
+  // of the stream, but the step runs from the start, whose time may lie well after it.
+  const float gap = had_sample ? std::min(dt, static_cast<float>(since_previous_sample.seconds())) : dt;
   if (gap > params_.max_imu_gap_s) {
     // Coast over the gap at constant velocity (no trustworthy input), then restart the
     // history here: nothing before the gap can be replayed across it.

@@ -41,7 +41,7 @@
 //
 // A driver that queues frames maps them as they are read out, after a whole backlog has been
 // observed: mapped as each arrived, a backlog's stamps would close up onto its last (all
-// arrived at once, each the quickest yet). Each stream through its own StreamStamps
+// arrived at once, each the quickest yet). Each stream goes through its own StreamStamps
 // (core/stream_stamps.hpp): mapped as read, a sample read after the offset fell would hand on a
 // time before the one read just before it.
 #include <algorithm>

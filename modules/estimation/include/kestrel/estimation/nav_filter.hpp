@@ -42,7 +42,9 @@
 //
 // Start: IMU samples before the first pose are stored (kNoData); the first pose initialises
 // the state at its own stamp and propagates through the stored samples after it; the first
-// altimeter sample sets the height outright.
+// altimeter sample sets the height outright. A sample in order but stamped not after the
+// state's start, which arrived after the first pose (queued behind it), is dropped with kNoData
+// too and counted as imu_before_start: the IMU's stream is fine, the state starts later.
 //
 // Bad inputs: non-finite samples (kNotFinite), IMU time going backwards (kTimeJump, sample
 // dropped), an IMU gap above max_imu_gap_s (kTimeJump: coasts at constant velocity over the
@@ -57,6 +59,7 @@
 //   Status set_params(p)               validate and use; does not reset the state
 //   void   set_attitude(FlightStatus)  roll/pitch for the following IMU samples (default level)
 //   Status predict(ImuSample)          one fixed-clock step; kNoData before the first pose
+//                                      or the state's start
 //   Status update_pose(PoseMeasurement2)     scan matcher pose (world frame, 3x3 covariance)
 //   Status update_altitude(AltimeterSample)
 //   Status update_at_rest(stamp, variance)   zero velocity: the vehicle rests on the ground
@@ -86,7 +89,7 @@ struct NavFilterCounters {
   uint32_t imu_not_finite = 0;
   uint32_t imu_out_of_range = 0;     // a component beyond kMaxAccelMps2 / kMaxGyroRadps
   uint32_t imu_time_backwards = 0;   // stamp not after the previous sample
-  uint32_t imu_before_start = 0;     // in order, but older than the first pose (arrived after it)
+  uint32_t imu_before_start = 0;     // in order, but not after the state's start (the first pose)
   uint32_t imu_gaps = 0;             // gaps above max_imu_gap_s (history restarted)
   uint32_t pose_updates = 0;
   uint32_t pose_rejected = 0;        // gated out (outliers)
