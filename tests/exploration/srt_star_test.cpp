@@ -1008,6 +1008,59 @@ TEST(SrtStarPlannerKeepOut, BadBoxesAreRefused) {
   EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument);
   p.keep_out_count = 1;
   EXPECT_EQ(planner->configure(p, {}), Status::kOk);
+  for (const float margin : {-0.1f, NAN, 101.0f}) {
+    p.keep_out_sight_margin_m = margin;
+    EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument) << margin;
+  }
+}
+
+// The box lies in the estimate's frame: with the estimate 1.5 m off along the corridor, the
+// window's frontiers are seen beside the box, and the planner keeps some (the vehicle flew into
+// the glass after them: iarc-arena, URG-04LX, EXPERIMENTS.md). Lengthened along the wall by
+// keep_out_sight_margin_m for that test, the box drops every frontier whose true ray crosses the
+// window; not widened, it leaves the door 4 m along the wall, and the corridor, their frontiers.
+TEST(SrtStarPlannerKeepOut, ASightMarginDropsTheWindowsFrontiersSeenFromADriftedEstimate) {
+  const SegmentWorld laser_world = corridor_with_window(false);
+  const KeepOut window{2.0f, 8.9f, 5.0f, 9.1f};
+  const float drift = -1.5f;  // estimate minus truth, along the corridor
+  int through_window[2] = {0, 0}, through_door = 0, along_corridor = 0;
+  // Where a box widened by the margin too would reach into the corridor beside the window.
+  const KeepOut beside_window{0.5f, 6.6f, 6.5f, 8.4f};
+  for (uint32_t seed = 1; seed <= 6; ++seed) {
+    for (const int with_margin : {0, 1}) {
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " margin " << with_margin);
+      SrtParams p;
+      p.seed = seed;
+      p.keep_out[0] = window;
+      p.keep_out_count = 1;
+      p.keep_out_sight_margin_m = with_margin ? 2.0f : 0.0f;
+      auto planner = std::make_unique<SrtStarPlanner>();
+      ASSERT_EQ(planner->configure(p, {}), Status::kOk);
+      Pose2 pose{2.0f + drift, 7.5f, 0.0f};  // the estimate; the laser is at pose.x - drift
+      TimeUs t{};
+      for (int k = 0; k < 40 && !planner->finished(); ++k) {
+        const LaserScan scan = laser_world.scan(kUrg, pose.x - drift, pose.y, pose.theta, t);
+        bool fresh = false;
+        test::update_until_settled(*planner, pose, scan, t, fresh, [](Status st) { EXPECT_EQ(st, Status::kOk); });
+        const Point2 w = planner->waypoint();
+        if (std::hypot(w.x - pose.x, w.y - pose.y) > 1e-3f) pose.theta = std::atan2(w.y - pose.y, w.x - pose.x);
+        pose.x = w.x;
+        pose.y = w.y;
+        t += Duration::from_s(1.0);
+        for (const Frontier& f : planner->tree().frontiers()) {
+          const Point2 n = planner->tree().nodes()[f.node].position;
+          const Point2 a{n.x - drift, n.y}, b{f.position.x - drift, f.position.y};
+          through_window[with_margin] += segment_crosses_box(a, b, window, 0.0f);
+          through_door += with_margin && segment_crosses_box(a, b, KeepOut{9.0f, 8.9f, 10.2f, 9.1f}, 0.0f);
+          along_corridor += with_margin && a.y < 8.4f && b.y < 8.4f && segment_crosses_box(a, b, beside_window, 0.0f);
+        }
+      }
+    }
+  }
+  EXPECT_GT(through_window[0], 0);  // without the margin the drifted box lets them through
+  EXPECT_EQ(through_window[1], 0);
+  EXPECT_GT(through_door, 0);
+  EXPECT_GT(along_corridor, 0);
 }
 
 }  // namespace

@@ -577,9 +577,20 @@ uint32_t SrtStarPlanner::widen_extent_to_returns() {
   return used;
 }
 
-bool SrtStarPlanner::crosses_keep_out(Point2 a, Point2 b) const {
-  for (std::size_t i = 0; i < srt_.keep_out_count; ++i)
-    if (srt_.keep_out[i].crossed_by(a, b, srt_.clearance_m)) return true;
+bool SrtStarPlanner::crosses_keep_out(Point2 a, Point2 b, float along) const {
+  for (std::size_t i = 0; i < srt_.keep_out_count; ++i) {
+    KeepOut k = srt_.keep_out[i];
+    // Lengthened along its long side only (a window in a wall): widened, a strip would cover
+    // the corridor beside it.
+    if (k.x_max - k.x_min >= k.y_max - k.y_min) {
+      k.x_min -= along;
+      k.x_max += along;
+    } else {
+      k.y_min -= along;
+      k.y_max += along;
+    }
+    if (k.crossed_by(a, b, srt_.clearance_m)) return true;
+  }
   return false;
 }
 
@@ -590,7 +601,7 @@ uint32_t SrtStarPlanner::drop_frontiers_seen_through_keep_outs() {
   for (std::size_t i = 0; i < tree_.frontiers().size();) {
     const Frontier& f = tree_.frontiers()[i];
     used += f.node == current_ ? work::kKeepOutTest : 0;
-    if (f.node == current_ && crosses_keep_out(from, f.position)) {
+    if (f.node == current_ && crosses_keep_out(from, f.position, srt_.keep_out_sight_margin_m)) {
       tree_.remove_frontier(i);
     } else {
       ++i;
