@@ -1008,29 +1008,34 @@ TEST(SrtStarPlannerKeepOut, BadBoxesAreRefused) {
   EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument);
   p.keep_out_count = 1;
   EXPECT_EQ(planner->configure(p, {}), Status::kOk);
-  for (const float margin : {-0.1f, NAN, 101.0f}) {
+  for (const float margin : {-0.1f, NAN, 10.5f}) {
     p.keep_out_sight_margin_m = margin;
     EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument) << margin;
   }
 }
 
-// The box lies in the estimate's frame: with the estimate 1.5 m off along the corridor, the
-// window's frontiers are seen beside the box, and the planner keeps some (the vehicle flew into
+// The box lies in the estimate's frame: with the estimate 1.5 or 2.5 m off along the corridor,
+// the window's frontiers are seen beside the box, and the planner keeps some (the vehicle flew into
 // the glass after them: iarc-arena, URG-04LX, EXPERIMENTS.md). Lengthened along the wall by
 // keep_out_sight_margin_m for that test, the box drops every frontier whose true ray crosses the
 // window; not widened, it leaves the door 4 m along the wall, and the corridor, their frontiers.
 TEST(SrtStarPlannerKeepOut, ASightMarginDropsTheWindowsFrontiersSeenFromADriftedEstimate) {
   const SegmentWorld laser_world = corridor_with_window(false);
   const KeepOut window{2.0f, 8.9f, 5.0f, 9.1f};
-  const float drift = -1.5f;  // estimate minus truth, along the corridor
   int through_window[2] = {0, 0}, through_door = 0, along_corridor = 0;
   // Where a box widened by the margin too would reach into the corridor beside the window.
   const KeepOut beside_window{0.5f, 6.6f, 6.5f, 8.4f};
-  for (uint32_t seed = 1; seed <= 6; ++seed) {
+  // The estimate behind or ahead of the truth along the corridor (estimate minus truth); every
+  // other flight rescues frontiers, handing them up to ancestors, which must see through the
+  // lengthened box as the node did.
+  constexpr float kDrifts[4] = {-1.5f, 1.5f, -2.5f, -2.5f};
+  for (uint32_t seed = 1; seed <= 12; ++seed) {
+    const float drift = kDrifts[seed % 4];
     for (const int with_margin : {0, 1}) {
       SCOPED_TRACE(::testing::Message() << "seed " << seed << " margin " << with_margin);
       SrtParams p;
       p.seed = seed;
+      p.rescue_frontiers = seed % 2 == 0;
       p.keep_out[0] = window;
       p.keep_out_count = 1;
       p.keep_out_sight_margin_m = with_margin ? 2.0f : 0.0f;

@@ -217,6 +217,7 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
     } else if (key == "keepout_sight_margin_m" && kind == mission::MissionKind::kExplore) {
+      // The range SrtParams validates: named here so the error says which value was refused.
       if (!parse_double(value, d) || d < 0 || d > 10)
         return "keepout_sight_margin_m: '" + value + "' is not a distance in [0, 10] m";
       out.stack.explorer.srt.keep_out_sight_margin_m = static_cast<float>(d);

@@ -238,7 +238,9 @@ class SrtStarPlanner {
   uint32_t check_path(uint32_t budget, TimeUs now);
   void set_waypoint(Point2 p, TimeUs now);
   // Whether the segment a-b enters a keep-out box grown by the clearance (SrtParams::keep_out),
-  // and lengthened by `along` on its long side (keep_out_sight_margin_m, for frontiers).
+  // a strip lengthened by `along` >= 0 on its long side: keep_out_sight_margin_m for what is
+  // seen through it (frontiers, kept or handed up). Paths and waypoints keep the box as given:
+  // lengthened, it would shut the wall's other openings to the vehicle too.
   bool crosses_keep_out(Point2 a, Point2 b, float along = 0.0f) const;
   // steer_unflown: widens the flown grid's extent to the arrival scan's returns.
   uint32_t widen_extent_to_returns();
