@@ -63,7 +63,9 @@ class HokuyoScip final : public hal::LaserScanner {
   LaserScan scan_;
   bool fresh_ = false;
   DeviceClock sensor_clock_;  // core/device_clock.hpp
-  StreamStamps scan_stamps_;  // the sensor's order kept through a falling offset
+  // Mapped as it arrives, a scan never maps before the previous one, but onto its time when the
+  // board's clock read the same for both (each the quickest yet): this hands it on after it.
+  StreamStamps scan_stamps_;
   uint32_t last_sensor_ms_ = 0;
   int64_t unwrapped_ms_ = 0;
 };
