@@ -34,6 +34,23 @@ Eigen::Vector3f world_bias(const test::SyntheticFlight& fl, float psi) {
           fl.accel_bias.z()};
 }
 
+// The bad-input tests' first fix: a pose at (1, 2) heading 0.5 rad, to 1 cm and 0.01 rad.
+PoseMeasurement2 first_fix(TimeUs stamp = {}) {
+  PoseMeasurement2 pm;
+  pm.stamp = stamp;
+  pm.pose = Pose2{1.0f, 2.0f, 0.5f};
+  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  return pm;
+}
+
+// An IMU sample of a level vehicle at rest.
+ImuSample level_at_rest(TimeUs stamp) {
+  ImuSample imu;
+  imu.accel_mps2 = Eigen::Vector3f(0, 0, 9.80665f);
+  imu.stamp = stamp;
+  return imu;
+}
+
 // GIVEN N flights whose noise matches the filter's parameters, WHEN the filter runs,
 // THEN the mean NEES over the flights lies inside the two-sided 99 % chi-square bounds
 // at (nearly) every check time: chi2(3N) for each axis, chi2(2N) for the heading.
@@ -174,18 +191,13 @@ TEST(NavFilter, GatesOutScanMatcherJumps) {
 
 TEST(NavFilter, BadInputsHaveDefinedBehaviour) {
   auto filter = std::make_unique<NavFilter>();
-  ImuSample imu;
-  imu.accel_mps2 = Eigen::Vector3f(0, 0, 9.80665f);
-  imu.stamp = TimeUs::from_us(0000);
+  ImuSample imu = level_at_rest(TimeUs{});
   // Before the first pose: no state, and the IMU is only remembered.
   EXPECT_EQ(filter->predict(imu), Status::kNoData);
   EXPECT_FALSE(filter->state().valid);
   AltimeterSample alt{TimeUs::from_us(0000), 1.5f, 1e-4f};
   EXPECT_EQ(filter->update_altitude(alt), Status::kNoData);
-  PoseMeasurement2 pm;
-  pm.stamp = TimeUs::from_us(0000);
-  pm.pose = Pose2{1.0f, 2.0f, 0.5f};
-  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  PoseMeasurement2 pm = first_fix();
   EXPECT_EQ(filter->apply_correction(pm), Status::kNoData);
   EXPECT_EQ(filter->update_pose(pm), Status::kOk);
   ASSERT_TRUE(filter->state().valid);
@@ -257,14 +269,9 @@ TEST(NavFilter, BadInputsHaveDefinedBehaviour) {
 // repeated after it is still the stream going backwards; the next one predicts.
 TEST(NavFilter, ImuSampleOlderThanTheFirstPoseIsBeforeTheStartNotTimeGoingBackwards) {
   auto filter = std::make_unique<NavFilter>();
-  PoseMeasurement2 pm;
-  pm.stamp = TimeUs::from_us(1000000);
-  pm.pose = Pose2{1.0f, 2.0f, 0.5f};
-  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  PoseMeasurement2 pm = first_fix(TimeUs::from_us(1000000));
   ASSERT_EQ(filter->update_pose(pm), Status::kOk);
-  ImuSample imu;
-  imu.accel_mps2 = Eigen::Vector3f(0, 0, 9.80665f);
-  imu.stamp = TimeUs::from_us(995000);
+  ImuSample imu = level_at_rest(TimeUs::from_us(995000));
   EXPECT_EQ(filter->predict(imu), Status::kNoData);
   EXPECT_EQ(filter->counters().imu_before_start, 1u);
   EXPECT_EQ(filter->counters().imu_time_backwards, 0u);
@@ -303,9 +310,7 @@ TEST(NavFilter, HugeFiniteInputsAreRefusedAndLeaveTheStateUnchanged) {
   auto pick = [&] { return big[std::uniform_int_distribution<std::size_t>(0, std::size(big) - 1)(rng)]; };
   auto filter = std::make_unique<NavFilter>();
   auto ref = std::make_unique<NavFilter>();  // the same good stream without the bad inputs
-  PoseMeasurement2 pm;
-  pm.pose = Pose2{1.0f, 2.0f, 0.5f};
-  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  const PoseMeasurement2 pm = first_fix();
   AltimeterSample alt{TimeUs{}, 1e30f, 1e-4f};
   EXPECT_EQ(filter->update_altitude(alt), Status::kOutOfRange);  // before the first pose too
   ASSERT_EQ(filter->update_pose(pm), Status::kOk);
@@ -366,13 +371,9 @@ TEST(NavFilter, HugeFiniteInputsAreRefusedAndLeaveTheStateUnchanged) {
 // stays finite with a grown uncertainty, and the next pose re-anchors it.
 TEST(NavFilter, ImuLeapOfAnHourCoastsFinitelyAndRecovers) {
   auto filter = std::make_unique<NavFilter>();
-  PoseMeasurement2 pm;
-  pm.pose = Pose2{1.0f, 2.0f, 0.5f};
-  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  PoseMeasurement2 pm = first_fix();
   ASSERT_EQ(filter->update_pose(pm), Status::kOk);
-  ImuSample imu;
-  imu.accel_mps2 = Eigen::Vector3f(0, 0, 9.80665f);
-  imu.stamp = TimeUs::from_us(5000);
+  ImuSample imu = level_at_rest(TimeUs::from_us(5000));
   ASSERT_EQ(filter->predict(imu), Status::kOk);
   imu.stamp = imu.stamp + Duration::from_s(3600.0);
   EXPECT_EQ(filter->predict(imu), Status::kTimeJump);
