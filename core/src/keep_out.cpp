@@ -31,4 +31,18 @@ bool KeepOut::crossed_by(Point2 a, Point2 b, float grow) const {
   return t0 <= t1;
 }
 
+KeepOut KeepOut::lengthened(float along) const {
+  KeepOut k = *this;
+  if (!(along > 0.0f)) return k;
+  const float w = x_max - x_min, h = y_max - y_min;
+  if (w >= 3.0f * h) {
+    k.x_min -= along;
+    k.x_max += along;
+  } else if (h >= 3.0f * w) {
+    k.y_min -= along;
+    k.y_max += along;
+  }
+  return k;
+}
+
 }  // namespace kestrel

@@ -41,5 +41,31 @@ TEST(KeepOut, ASegmentCrossesTheBoxGrownByTheClearance) {
   EXPECT_FALSE(kWindow.crossed_by({NAN, 8}, {3, 10}, 0.0f));
 }
 
+// A strip is lengthened along its long side only; a box that is no strip, and a margin that is
+// zero, negative or NaN, leave the box as it is.
+TEST(KeepOut, AStripIsLengthenedAlongItsWallOnly) {
+  const KeepOut along_x = kWindow.lengthened(2.0f);
+  EXPECT_FLOAT_EQ(along_x.x_min, 0.0f);
+  EXPECT_FLOAT_EQ(along_x.x_max, 7.0f);
+  EXPECT_FLOAT_EQ(along_x.y_min, 8.9f);
+  EXPECT_FLOAT_EQ(along_x.y_max, 9.1f);
+  const KeepOut along_y = KeepOut{4.9f, 1.0f, 5.1f, 4.0f}.lengthened(1.0f);
+  EXPECT_FLOAT_EQ(along_y.y_min, 0.0f);
+  EXPECT_FLOAT_EQ(along_y.y_max, 5.0f);
+  EXPECT_FLOAT_EQ(along_y.x_min, 4.9f);
+  const KeepOut pillar{1.0f, 1.0f, 2.0f, 2.5f};  // 1 by 1.5 m: no wall to lengthen along
+  for (const float along : {2.0f, 0.0f, -1.0f, NAN}) {
+    const KeepOut k = (along == 2.0f ? pillar : kWindow).lengthened(along);
+    const KeepOut& same = along == 2.0f ? pillar : kWindow;
+    EXPECT_EQ(k.x_min, same.x_min) << along;
+    EXPECT_EQ(k.x_max, same.x_max) << along;
+    EXPECT_EQ(k.y_min, same.y_min) << along;
+    EXPECT_EQ(k.y_max, same.y_max) << along;
+  }
+  // Seen 2 m beside the window, along its wall: through the lengthened box, not the box.
+  EXPECT_FALSE(kWindow.crossed_by({6.5f, 8}, {6.5f, 10}, 0.0f));
+  EXPECT_TRUE(along_x.crossed_by({6.5f, 8}, {6.5f, 10}, 0.0f));
+}
+
 }  // namespace
 }  // namespace kestrel

@@ -3,6 +3,7 @@
 // between the levels and what a reset forgets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -177,6 +178,31 @@ TEST(FrontierExplorer, NoPathCrossesAKeepOutBox) {
   }
   EXPECT_TRUE(r.ex->finished());
   EXPECT_EQ(r.ex->counters().grid_restarts, p.frontier.max_grid_restarts);
+}
+
+// The box lies where the estimate puts it: with the estimate 1.5 m off along the wall, the
+// operator's box over a glass door lies beside the door's gap in the map. Taken 2 m longer
+// along its wall (keep_out_drift_margin_m), it shuts the gap; as given, paths lead through.
+TEST(FrontierExplorer, ADriftMarginShutsTheGapBesideADriftedBox) {
+  float furthest_east[2] = {0.0f, 0.0f};
+  for (const int with_margin : {0, 1}) {
+    SCOPED_TRACE(with_margin);
+    Rig r;
+    r.world = room_and_corridor();  // the door's gap: x 4, y 1.4..2.6
+    Params p;
+    p.srt.keep_out[0] = {3.9f, 2.9f, 4.1f, 4.1f};
+    p.srt.keep_out_count = 1;
+    p.srt.keep_out_drift_margin_m = with_margin ? 2.0f : 0.0f;
+    p.frontier.relaxed_lethal_m = 0.0f;
+    ASSERT_EQ(r.configure(p), Status::kOk);
+    for (int k = 0; k < 600 && !r.ex->finished(); ++k) {
+      ASSERT_EQ(r.step(2.0f, 2.0f, 0.05f * static_cast<float>(k)), Status::kOk);
+      for (const Point2& q : r.ex->plan_in_flight().path)
+        furthest_east[with_margin] = std::max(furthest_east[with_margin], q.x);
+    }
+  }
+  EXPECT_GT(furthest_east[0], 4.2f);  // out through the door
+  EXPECT_LT(furthest_east[1], 3.8f);
 }
 
 // Frontiers the search cannot reach, with none it can: the grid is forgotten and drawn again

@@ -1009,7 +1009,7 @@ TEST(SrtStarPlannerKeepOut, BadBoxesAreRefused) {
   p.keep_out_count = 1;
   EXPECT_EQ(planner->configure(p, {}), Status::kOk);
   for (const float margin : {-0.1f, NAN, 10.5f}) {
-    p.keep_out_sight_margin_m = margin;
+    p.keep_out_drift_margin_m = margin;
     EXPECT_EQ(planner->configure(p, {}), Status::kInvalidArgument) << margin;
   }
 }
@@ -1017,9 +1017,9 @@ TEST(SrtStarPlannerKeepOut, BadBoxesAreRefused) {
 // The box lies in the estimate's frame: with the estimate 1.5 or 2.5 m off along the corridor,
 // the window's frontiers are seen beside the box, and the planner keeps some (the vehicle flew into
 // the glass after them: iarc-arena, URG-04LX, EXPERIMENTS.md). Lengthened along the wall by
-// keep_out_sight_margin_m for that test, the box drops every frontier whose true ray crosses the
+// keep_out_drift_margin_m for that test, the box drops every frontier whose true ray crosses the
 // window; not widened, it leaves the door 4 m along the wall, and the corridor, their frontiers.
-TEST(SrtStarPlannerKeepOut, ASightMarginDropsTheWindowsFrontiersSeenFromADriftedEstimate) {
+TEST(SrtStarPlannerKeepOut, ADriftMarginDropsTheWindowsFrontiersSeenFromADriftedEstimate) {
   const SegmentWorld laser_world = corridor_with_window(false);
   const KeepOut window{2.0f, 8.9f, 5.0f, 9.1f};
   int through_window[2] = {0, 0}, through_door = 0, along_corridor = 0;
@@ -1038,7 +1038,7 @@ TEST(SrtStarPlannerKeepOut, ASightMarginDropsTheWindowsFrontiersSeenFromADrifted
       p.rescue_frontiers = seed % 2 == 0;
       p.keep_out[0] = window;
       p.keep_out_count = 1;
-      p.keep_out_sight_margin_m = with_margin ? 2.0f : 0.0f;
+      p.keep_out_drift_margin_m = with_margin ? 2.0f : 0.0f;
       auto planner = std::make_unique<SrtStarPlanner>();
       ASSERT_EQ(planner->configure(p, {}), Status::kOk);
       Pose2 pose{2.0f + drift, 7.5f, 0.0f};  // the estimate; the laser is at pose.x - drift

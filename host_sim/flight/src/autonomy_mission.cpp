@@ -216,11 +216,11 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       out.stack.explorer.srt.retrace_target = t.value();
     } else if (key == "keepout" && kind == mission::MissionKind::kExplore) {
       if (std::string e = parse_keep_outs(value, out.stack.explorer.srt); !e.empty()) return "keepout: " + e;
-    } else if (key == "keepout_sight_margin_m" && kind == mission::MissionKind::kExplore) {
+    } else if (key == "keepout_drift_margin_m" && kind == mission::MissionKind::kExplore) {
       // The range SrtParams validates: named here so the error says which value was refused.
       if (!parse_double(value, d) || d < 0 || d > 10)
-        return "keepout_sight_margin_m: '" + value + "' is not a distance in [0, 10] m";
-      out.stack.explorer.srt.keep_out_sight_margin_m = static_cast<float>(d);
+        return "keepout_drift_margin_m: '" + value + "' is not a distance in [0, 10] m";
+      out.stack.explorer.srt.keep_out_drift_margin_m = static_cast<float>(d);
     } else if (key == "home_fix" && kind == mission::MissionKind::kExplore) {
       if (value != "on" && value != "off") return "home_fix: expected on or off, got '" + value + "'";
       out.stack.home_fix.enabled = value == "on";

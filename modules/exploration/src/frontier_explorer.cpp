@@ -273,11 +273,13 @@ void FrontierExplorer::replan(TimeUs now) {
   last_plan_ = now;
   ++level3_.plans;
   // The operator's keep-out boxes are obstacles to the planner (kept lethal_m off even by the
-  // relaxed search): a window the beams pass is no way through.
+  // relaxed search): a window the beams pass is no way through. Lengthened along their wall by
+  // the drift margin: the map, and the window's gap in it, lie in the estimate's frame, the box
+  // where the operator put it, and an estimate drifted along the wall finds the gap beside it.
   std::array<CellBox, kMaxKeepOuts> blocked{};
   std::size_t n_blocked = 0;
   for (std::size_t i = 0; i < params_.srt.keep_out_count && i < kMaxKeepOuts; ++i) {
-    const KeepOut& k = params_.srt.keep_out[i];
+    const KeepOut k = params_.srt.keep_out[i].lengthened(params_.srt.keep_out_drift_margin_m);
     const auto clamp_cell = [&](float x, float y) {
       const float fx = std::clamp((x - geo.origin.x) / geo.cell_m, 0.0f, static_cast<float>(planning::kGridSide - 1));
       const float fy = std::clamp((y - geo.origin.y) / geo.cell_m, 0.0f, static_cast<float>(planning::kGridSide - 1));

@@ -77,8 +77,8 @@ Status Params::validate() const {
                       listed(srt.steer, kSteerUnflownModes) && listed(srt.retrace, kRetraceModes) &&
                       listed(srt.retrace_target, kRetraceTargets);
   // A drift allowance beyond 10 m would hide a building's whole wall: no margin, a lost estimate.
-  bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts && non_negative(srt.keep_out_sight_margin_m) &&
-                     srt.keep_out_sight_margin_m <= 10.0f;
+  bool keep_out_ok = srt.keep_out_count <= kMaxKeepOuts && non_negative(srt.keep_out_drift_margin_m) &&
+                     srt.keep_out_drift_margin_m <= 10.0f;
   for (std::size_t i = 0; keep_out_ok && i < srt.keep_out_count; ++i) keep_out_ok = srt.keep_out[i].valid();
   // A waypoint is at least twice d from its node, in millimetres of 16 bits: d up to 10 m.
   const bool guidance_ok = positive(guidance.arrival_distance_m) && guidance.arrival_distance_m <= 10.0f &&

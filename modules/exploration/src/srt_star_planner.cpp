@@ -482,7 +482,7 @@ uint32_t SrtStarPlanner::hand_up_or_drop(std::size_t i) {
       const int sector = tree_.nodes()[n].sector_of(f.position);
       if (sector < 0) continue;  // behind that node's field of view
       // Seen through a keep-out from there: as for a new node's own frontiers, not that node's.
-      if (crosses_keep_out(tree_.nodes()[n].position, f.position, srt_.keep_out_sight_margin_m)) continue;
+      if (crosses_keep_out(tree_.nodes()[n].position, f.position, srt_.keep_out_drift_margin_m)) continue;
       f.node = n;
       f.sector = static_cast<uint8_t>(sector);
       f.handed_up = true;
@@ -579,21 +579,7 @@ uint32_t SrtStarPlanner::widen_extent_to_returns() {
 
 bool SrtStarPlanner::crosses_keep_out(Point2 a, Point2 b, float along) const {
   for (std::size_t i = 0; i < srt_.keep_out_count; ++i) {
-    KeepOut k = srt_.keep_out[i];
-    if (along > 0.0f) {
-      // Only a strip (a window in a wall: one side three times the other or more), and only
-      // along its long side: widened, it would cover the corridor beside the wall; a pillar's
-      // or a room's box has no wall to be lengthened along.
-      const float w = k.x_max - k.x_min, h = k.y_max - k.y_min;
-      if (w >= 3.0f * h) {
-        k.x_min -= along;
-        k.x_max += along;
-      } else if (h >= 3.0f * w) {
-        k.y_min -= along;
-        k.y_max += along;
-      }
-    }
-    if (k.crossed_by(a, b, srt_.clearance_m)) return true;
+    if (srt_.keep_out[i].lengthened(along).crossed_by(a, b, srt_.clearance_m)) return true;
   }
   return false;
 }
@@ -605,7 +591,7 @@ uint32_t SrtStarPlanner::drop_frontiers_seen_through_keep_outs() {
   for (std::size_t i = 0; i < tree_.frontiers().size();) {
     const Frontier& f = tree_.frontiers()[i];
     used += f.node == current_ ? work::kKeepOutTest : 0;
-    if (f.node == current_ && crosses_keep_out(from, f.position, srt_.keep_out_sight_margin_m)) {
+    if (f.node == current_ && crosses_keep_out(from, f.position, srt_.keep_out_drift_margin_m)) {
       tree_.remove_frontier(i);
     } else {
       ++i;

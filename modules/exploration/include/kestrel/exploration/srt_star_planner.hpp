@@ -238,7 +238,7 @@ class SrtStarPlanner {
   uint32_t check_path(uint32_t budget, TimeUs now);
   void set_waypoint(Point2 p, TimeUs now);
   // Whether the segment a-b enters a keep-out box grown by the clearance (SrtParams::keep_out),
-  // a strip lengthened by `along` >= 0 on its long side: keep_out_sight_margin_m for what is
+  // a strip lengthened by `along` >= 0 on its long side: keep_out_drift_margin_m for what is
   // seen through it (frontiers, kept or handed up). Paths and waypoints keep the box as given:
   // lengthened, it would shut the wall's other openings to the vehicle too.
   bool crosses_keep_out(Point2 a, Point2 b, float along = 0.0f) const;
