@@ -35,10 +35,10 @@ KeepOut KeepOut::lengthened(float along) const {
   KeepOut k = *this;
   if (!(along > 0.0f)) return k;
   const float w = x_max - x_min, h = y_max - y_min;
-  if (w >= 3.0f * h) {
+  if (w >= 3.0f * h && w >= kMinStripLengthM) {
     k.x_min -= along;
     k.x_max += along;
-  } else if (h >= 3.0f * w) {
+  } else if (h >= 3.0f * w && h >= kMinStripLengthM) {
     k.y_min -= along;
     k.y_max += along;
   }

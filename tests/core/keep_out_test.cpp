@@ -53,15 +53,16 @@ TEST(KeepOut, AStripIsLengthenedAlongItsWallOnly) {
   EXPECT_FLOAT_EQ(along_y.y_min, 0.0f);
   EXPECT_FLOAT_EQ(along_y.y_max, 5.0f);
   EXPECT_FLOAT_EQ(along_y.x_min, 4.9f);
-  const KeepOut pillar{1.0f, 1.0f, 2.0f, 2.5f};  // 1 by 1.5 m: no wall to lengthen along
-  for (const float along : {2.0f, 0.0f, -1.0f, NAN}) {
-    const KeepOut k = (along == 2.0f ? pillar : kWindow).lengthened(along);
-    const KeepOut& same = along == 2.0f ? pillar : kWindow;
-    EXPECT_EQ(k.x_min, same.x_min) << along;
-    EXPECT_EQ(k.x_max, same.x_max) << along;
-    EXPECT_EQ(k.y_min, same.y_min) << along;
-    EXPECT_EQ(k.y_max, same.y_max) << along;
-  }
+  // No wall to lengthen along: a pillar's 1 by 1.5 m, a post's 0.1 by 0.3 m, a point.
+  const KeepOut pillar{1.0f, 1.0f, 2.0f, 2.5f}, post{1.0f, 1.0f, 1.1f, 1.3f}, point{1.0f, 1.0f, 1.0f, 1.0f};
+  const auto expect_same = [](const KeepOut& k, const KeepOut& same) {
+    EXPECT_EQ(k.x_min, same.x_min);
+    EXPECT_EQ(k.x_max, same.x_max);
+    EXPECT_EQ(k.y_min, same.y_min);
+    EXPECT_EQ(k.y_max, same.y_max);
+  };
+  for (const KeepOut& box : {pillar, post, point}) expect_same(box.lengthened(2.0f), box);
+  for (const float along : {0.0f, -1.0f, NAN}) expect_same(kWindow.lengthened(along), kWindow);
   // Seen 2 m beside the window, along its wall: through the lengthened box, not the box.
   EXPECT_FALSE(kWindow.crossed_by({6.5f, 8}, {6.5f, 10}, 0.0f));
   EXPECT_TRUE(along_x.crossed_by({6.5f, 8}, {6.5f, 10}, 0.0f));

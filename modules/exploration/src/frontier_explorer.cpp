@@ -287,6 +287,11 @@ void FrontierExplorer::replan(TimeUs now) {
     };
     // Grown by what the relaxed search gives up: no search comes nearer than lethal_m.
     const float grow = fp.relaxed_lethal_m > 0.0f ? fp.lethal_m - std::min(fp.relaxed_lethal_m, fp.lethal_m) : 0.0f;
+    // A box wholly off the grid blocks nothing: clamped, it would block the edge's cells.
+    const float side = static_cast<float>(planning::kGridSide) * geo.cell_m;
+    if (k.x_max + grow < geo.origin.x || k.x_min - grow > geo.origin.x + side || k.y_max + grow < geo.origin.y ||
+        k.y_min - grow > geo.origin.y + side)
+      continue;
     const Cell a = clamp_cell(k.x_min - grow, k.y_min - grow), b = clamp_cell(k.x_max + grow, k.y_max + grow);
     blocked[n_blocked++] = {a.x, a.y, b.x, b.y};
   }

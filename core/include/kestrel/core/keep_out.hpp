@@ -19,11 +19,13 @@ struct KeepOut {
   // Whether the segment a-b enters the box grown by `grow` on every side (false for a
   // non-finite point).
   bool crossed_by(Point2 a, Point2 b, float grow) const;
-  // A strip (a window in a wall: one side three times the other or more) lengthened by `along`
-  // at each end of its long side, as far as an estimate that places it may have drifted along
-  // the wall; any other box as it is: widened, a strip would cover the corridor beside its wall,
-  // and a pillar's or a room's box has no wall to be lengthened along.
+  // A strip (a window in a wall: kMinStripLengthM or longer, three times its width or more)
+  // lengthened by `along` at each end of its long side, as far as an estimate that places it may
+  // have drifted along the wall; any other box as it is: widened, a strip would cover the
+  // corridor beside its wall, and a pillar's, a post's or a room's box has no wall to be
+  // lengthened along.
   KeepOut lengthened(float along) const;
+  static constexpr float kMinStripLengthM = 0.5f;
 };
 
 }  // namespace kestrel

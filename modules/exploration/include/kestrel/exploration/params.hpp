@@ -151,7 +151,7 @@ struct SrtParams {
   // put it. The price: an opening in the same wall within this plus the clearance of the box's
   // ends is not seen through (SRT-Star) or flown through (grid frontiers) either. 2 m:
   // iarc-arena's URG-04LX flights over 30 minutes touching nothing, blend 9 -> 31 of 60 with
-  // every room kept, grid frontiers 15 -> 25 of 30; 3 m closed room C's door, 4 m along
+  // every room kept, grid frontiers 26 -> 49 of 60; 3 m closed room C's door, 4 m along
   // (EXPERIMENTS.md; in neither paper).
   float keep_out_drift_margin_m = 2.0f;
 };

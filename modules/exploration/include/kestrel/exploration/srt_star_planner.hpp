@@ -240,7 +240,9 @@ class SrtStarPlanner {
   // Whether the segment a-b enters a keep-out box grown by the clearance (SrtParams::keep_out),
   // a strip lengthened by `along` >= 0 on its long side: keep_out_drift_margin_m for what is
   // seen through it (frontiers, kept or handed up). Paths and waypoints keep the box as given:
-  // lengthened, it would shut the wall's other openings to the vehicle too.
+  // a frontier seen beside the box is dropped before it can draw a waypoint there, which was
+  // enough (EXPERIMENTS.md). The grid frontier explorer has no such step, so its paths take
+  // the lengthened box.
   bool crosses_keep_out(Point2 a, Point2 b, float along = 0.0f) const;
   // steer_unflown: widens the flown grid's extent to the arrival scan's returns.
   uint32_t widen_extent_to_returns();
