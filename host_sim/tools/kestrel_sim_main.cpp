@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
 
   if (opt.trace_scans) {
     const std::string trace_path = opt.out_dir + "/scan_trace.csv";
-    const Status ts = mission->open_scan_trace(trace_path);
+    const Status ts = mission->open_traces(opt.out_dir);
     if (ts == Status::kUnsupported)
       return usage_error("--trace-scans: mission '" + opt.mission + "' runs no scan matcher");
     if (ts != Status::kOk) {

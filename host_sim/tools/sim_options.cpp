@@ -30,7 +30,10 @@ std::string sim_usage() {
       "  --trace-scans  also write scan_trace.csv (hover, waypoints, explore): one row per scan\n"
       "              the autonomy stack processed, with the match, the filter after the update,\n"
       "              the true state and their errors; the header row names the columns, which\n"
-      "              host_sim/flight/include/kestrel/flight/scan_trace.hpp documents. Off by default\n";
+      "              host_sim/flight/include/kestrel/flight/scan_trace.hpp documents; and, when\n"
+      "              the compact SLAM runs, slam_trace.csv: one row per scan it processed, with\n"
+      "              its outcome, the filter's pose, its best fit and the truth (slam_trace.hpp).\n"
+      "              Off by default\n";
   return u;
 }
 

@@ -132,6 +132,41 @@ TEST(CompactSlam, AlongACorridorItDoesNotCorrectWhatTheWallsCannotSay) {
   EXPECT_LT(f.corrected_along_x_m, 0.1f);
 }
 
+// The search's best pose is reported whether the correction is handed back or refused: what
+// kestrel-sim's SLAM trace compares with the truth to tell a map that could have corrected the
+// filter from one that had followed it.
+TEST(CompactSlam, TheBestFitIsReportedWhetherHandedBackOrRefused) {
+  const test::SegmentWorld w = test::slam_room();
+  const Pose2 truth{0.3f, -0.2f, 0.1f};
+  const Pose2 prior{truth.x + 0.1f, truth.y - 0.08f, truth.theta};
+  const scan_matching::ScanPoints pts = test::scan_points(w, test::LaserModel::urg04lx(), truth);
+  const auto after_warmup = [&](const SlamParams& p) {
+    Rig r;
+    EXPECT_EQ(r.slam->configure(p), Status::kOk);
+    for (int i = 0; i <= static_cast<int>(p.warmup_scans); ++i) (void)r.slam->process(pts, truth);
+    return r.slam->process(pts, prior);
+  };
+  SlamParams p;
+  const SlamResult handed_back = after_warmup(p);
+  ASSERT_TRUE(handed_back.corrected());
+  EXPECT_EQ(handed_back.fit.x, handed_back.pose.x);
+  EXPECT_EQ(handed_back.fit.y, handed_back.pose.y);
+  EXPECT_LT(std::hypot(handed_back.fit.x - truth.x, handed_back.fit.y - truth.y), 0.04f);
+
+  p.max_correction_m = 0.05f;  // the 13 cm move is now beyond the limit
+  const SlamResult refused = after_warmup(p);
+  ASSERT_TRUE((refused.flags & slam_flag::kTooFar) != 0) << refused.flags;
+  EXPECT_EQ(refused.pose.x, prior.x);
+  EXPECT_EQ(refused.pose.y, prior.y);
+  EXPECT_LT(std::hypot(refused.fit.x - truth.x, refused.fit.y - truth.y), 0.04f);
+
+  Rig r;  // nothing searched: the fit is the prior
+  ASSERT_EQ(r.slam->configure({}), Status::kOk);
+  const SlamResult started = r.slam->process(pts, prior);
+  EXPECT_EQ(started.fit.x, prior.x);
+  EXPECT_EQ(started.fit.y, prior.y);
+}
+
 TEST(CompactSlam, BadInputsAreIgnoredWithAReason) {
   Rig r;
   ASSERT_EQ(r.slam->configure({}), Status::kOk);

@@ -370,6 +370,13 @@ Status AutonomyMission::start(sim::Simulation& sim) {
     failure_ = std::string("autonomy stack configuration: ") + stack_->configure_error();
     return Status::kInvalidArgument;
   }
+  if (!traces_dir_.empty() && cfg.slam_enabled) {
+    const std::string path = traces_dir_ + "/slam_trace.csv";
+    if (slam_trace_.open(path) != Status::kOk) {
+      failure_ = "cannot write the SLAM trace '" + path + "'";
+      return Status::kIoError;
+    }
+  }
   const Status s = stack_->start();
   if (s != Status::kOk) failure_ = std::string("autonomy stack start: ") + to_string(s);
   samples_.reserve(200000);
@@ -389,6 +396,7 @@ sim::MissionState AutonomyMission::tick(sim::Simulation& sim) {
       score(sim);
       if (trace_.is_open()) trace(sim);
     }
+    if (slam_trace_.is_open() && stack_->slam_steps() != slam_steps_traced_) trace_slam(sim);
   }
   if (stack_->mission().phase() == mission::Phase::kHover) {
     const Eigen::Vector3d sp = stack_->setpoint().position_m.cast<double>();
@@ -426,6 +434,28 @@ void AutonomyMission::trace(sim::Simulation& sim) {
   const bool have_scan = sim.truth_at(m.measurement.stamp, at_scan) == Status::kOk;
   const bool have_nav = f.valid && sim.truth_at(f.stamp, at_nav) == Status::kOk;
   trace_.write(m, f, have_scan ? &at_scan : nullptr, have_nav ? &at_nav : nullptr);
+}
+
+void AutonomyMission::trace_slam(sim::Simulation& sim) {
+  slam_steps_traced_ = stack_->slam_steps();
+  const autonomy::SlamStep& step = stack_->last_slam_step();
+  sim::VehicleState truth;
+  const bool have_truth = sim.truth_at(step.stamp, truth) == Status::kOk;
+  double true_level = std::nan("");
+  namespace sf = slam::slam_flag;
+  if (have_truth && (step.result.flags & sf::kMatched) != 0 && (step.result.flags & sf::kDrawn) == 0) {
+    const Pose2 at{static_cast<float>(truth.position_m.x()), static_cast<float>(truth.position_m.y()),
+                   static_cast<float>(truth.yaw_rad)};
+    const slam::CompactSlam& s = stack_->slam();
+    true_level = static_cast<double>(slam::mean_level(s.map(), s.last_scan(), step.frame.to_slam(at))) / slam::kSub;
+  }
+  slam_trace_.write(step, have_truth ? &truth : nullptr, true_level);
+}
+
+Status AutonomyMission::open_traces(const std::string& out_dir) {
+  const Status s = trace_.open(out_dir + "/scan_trace.csv");
+  if (s == Status::kOk) traces_dir_ = out_dir;
+  return s;
 }
 
 std::optional<sim::EstimateError> estimate_error_at(const std::vector<EstimateSample>& samples, double t_s,
@@ -561,7 +591,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
 }
 
 Status AutonomyMission::write_outputs(const std::string& dir) const {
-  if (trace_.flush() != Status::kOk) return Status::kIoError;
+  if (trace_.flush() != Status::kOk || slam_trace_.flush() != Status::kOk) return Status::kIoError;
   output::TumWriter tum;
   if (tum.open(dir + "/trajectory_est.tum") != Status::kOk) return Status::kIoError;
   for (const EstimateSample& s : samples_)

@@ -6,15 +6,6 @@
 
 namespace kestrel::flight {
 
-namespace {
-constexpr std::size_t kFileBuffer = 1 << 16;
-constexpr std::size_t kRowMax = 1024;
-}  // namespace
-
-ScanTrace::~ScanTrace() {
-  if (file_ != nullptr) std::fclose(file_);
-}
-
 const char* ScanTrace::header() {
   return "t_s,flags,rejected,lost,degenerate,key_scan,window_clamped,map_restarted,"
          "x,y,theta,cov_xx,cov_yy,cov_xy,cov_tt,score,overlap,points,axis_ratio,major_axis_rad,"
@@ -54,35 +45,6 @@ int ScanTrace::format_row(char* buf, std::size_t size, const scan_matching::Scan
       static_cast<double>(f.velocity_mps.y()), static_cast<double>(f.heading_rad),
       static_cast<double>(f.position_std_m.x()), static_cast<double>(f.position_std_m.y()),
       static_cast<double>(f.heading_std_rad), tx, ty, tyaw, tvx, tvy, match_err, match_err_theta, nav_err);
-}
-
-Status ScanTrace::open(const std::string& path) {
-  if (file_ != nullptr) std::fclose(file_);
-  file_ = std::fopen(path.c_str(), "w");
-  if (file_ == nullptr) return Status::kIoError;
-  buffer_ = std::make_unique<char[]>(kFileBuffer);
-  std::setvbuf(file_, buffer_.get(), _IOFBF, kFileBuffer);
-  rows_ = 0;
-  failed_ = std::fprintf(file_, "%s\n", header()) < 0;
-  return failed_ ? Status::kIoError : Status::kOk;
-}
-
-void ScanTrace::write(const scan_matching::ScanMatch& match, const NavState& filter,
-                      const sim::VehicleState* truth_at_scan, const sim::VehicleState* truth_at_nav) {
-  if (file_ == nullptr) return;
-  char row[kRowMax];
-  const int n = format_row(row, sizeof row, match, filter, truth_at_scan, truth_at_nav);
-  if (n < 0 || static_cast<std::size_t>(n) >= sizeof row || std::fprintf(file_, "%s\n", row) < 0) {
-    failed_ = true;  // flush() reports it; the row is not counted
-    return;
-  }
-  ++rows_;
-}
-
-Status ScanTrace::flush() const {
-  if (file_ == nullptr) return Status::kOk;
-  if (std::fflush(file_) != 0 || std::ferror(file_) != 0 || failed_) return Status::kIoError;
-  return Status::kOk;
 }
 
 }  // namespace kestrel::flight

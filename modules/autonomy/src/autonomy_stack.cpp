@@ -116,6 +116,8 @@ void AutonomyStack::background_step() {
   const SlamInput* in = slam_in_.readable();
   if (in == nullptr) return;
   const slam::SlamResult r = slam_.process(in->points, in->prior);
+  last_slam_step_ = {in->stamp, r, in->frame.to_filter(in->prior), in->frame.to_filter(r.fit), in->frame};
+  ++slam_steps_;
   if (r.corrected()) {  // counted by the SLAM (slam().counters()); the filter counts its refusals
     PoseMeasurement2* out = slam_out_.writable();
     *out = {};

@@ -39,6 +39,7 @@ SlamResult CompactSlam::process(const scan_matching::ScanPoints& points, const P
   using namespace slam_flag;
   SlamResult r;
   r.pose = prior;
+  r.fit = prior;
   if (!prior.finite()) {
     r.flags = kNotFinite;
     return r;
@@ -74,6 +75,7 @@ SlamResult CompactSlam::process(const scan_matching::ScanPoints& points, const P
   fit.pose = supported_move(map_, scan_, prior, fit.pose, map_.cell_m(), params_.min_curvature);
   fit.level = mean_level(map_, scan_, fit.pose);
   r.flags = kMatched;
+  r.fit = fit.pose;
   r.level = static_cast<float>(fit.level) / kSub;
   r.prior_level = static_cast<float>(fit.prior_level) / kSub;
   if (r.level > params_.max_fit_level) {

@@ -23,6 +23,7 @@
 #include "kestrel/autonomy/autonomy_stack.hpp"
 #include "kestrel/flight/delayed_laser.hpp"
 #include "kestrel/flight/scan_trace.hpp"
+#include "kestrel/flight/slam_trace.hpp"
 #include "kestrel/metrics/ekf_error_stats.hpp"
 #include "kestrel/metrics/horizontal_drift.hpp"
 #include "kestrel/metrics/runaway_counter.hpp"
@@ -82,7 +83,8 @@ class AutonomyMission final : public sim::Mission {
   std::optional<sim::EstimateError> estimate_error_at(TimeUs t) const override;
   std::string failure() const override { return failure_; }
   Status write_outputs(const std::string& out_dir) const override;
-  Status open_scan_trace(const std::string& path) override { return trace_.open(path); }
+  // scan_trace.csv now; slam_trace.csv in start(), once the stack says whether the SLAM runs.
+  Status open_traces(const std::string& out_dir) override;
   void draw(output::Canvas& canvas) const override;
   std::vector<LegendRow> legend() const override;
 
@@ -93,6 +95,7 @@ class AutonomyMission final : public sim::Mission {
  private:
   void score(sim::Simulation& sim);
   void trace(sim::Simulation& sim);
+  void trace_slam(sim::Simulation& sim);
 
   FlightOptions options_;
   class RealClock;
@@ -109,6 +112,9 @@ class AutonomyMission final : public sim::Mission {
   metrics::HorizontalDriftAccumulator drift_;
   metrics::RunawayCounter runaways_;  // estimate_runaways in metrics.json
   ScanTrace trace_;  // --trace-scans (scan_trace.hpp); closed unless asked for
+  SlamTrace slam_trace_;  // --trace-scans with the compact SLAM (slam_trace.hpp)
+  std::string traces_dir_;  // where --trace-scans writes; empty when not asked for
+  uint32_t slam_steps_traced_ = 0;
 };
 
 }  // namespace kestrel::flight

@@ -3,7 +3,8 @@
 // match (flags, pose, covariance, score, ellipse), the filter after the update and the
 // simulator's true pose, so that where and why an estimate drifts can be read off a file
 // instead of a temporary print in the stack. Off by default; when off nothing is opened and
-// the mission pays one null-pointer test per scan.
+// the mission pays one null-pointer test per scan. With the compact SLAM, the same option
+// writes its trace beside this one (slam_trace.hpp).
 //
 // Columns (header row first; angles in rad, lengths in m, time in s of simulated time):
 //   t_s                the scan's stamp (its first beam)
@@ -20,12 +21,11 @@
 //   nav_err_m          |filter position - true position at nav_t_s|
 // A true state older than the simulator's truth history is written as nan.
 #include <cstddef>
-#include <cstdio>
-#include <memory>
 #include <string>
 
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/status.hpp"
+#include "kestrel/flight/csv_trace.hpp"
 #include "kestrel/scan_matching/scan_matcher.hpp"
 #include "kestrel/sim/vehicle.hpp"
 
@@ -33,11 +33,6 @@ namespace kestrel::flight {
 
 class ScanTrace {
  public:
-  ScanTrace() = default;
-  ~ScanTrace();
-  ScanTrace(const ScanTrace&) = delete;
-  ScanTrace& operator=(const ScanTrace&) = delete;
-
   static const char* header();  // without the newline
   // One row (without the newline) into buf; the number of characters, as snprintf. truth_*
   // may be null (unknown: nan).
@@ -46,19 +41,20 @@ class ScanTrace {
 
   // Creates `path` and writes the header; the buffer is allocated here, so rows do not
   // allocate.
-  Status open(const std::string& path);
-  bool is_open() const { return file_ != nullptr; }
+  Status open(const std::string& path) { return file_.open(path, header()); }
+  bool is_open() const { return file_.is_open(); }
   void write(const scan_matching::ScanMatch& match, const NavState& filter, const sim::VehicleState* truth_at_scan,
-             const sim::VehicleState* truth_at_nav);
+             const sim::VehicleState* truth_at_nav) {
+    file_.write([&](char* buf, std::size_t size) {
+      return format_row(buf, size, match, filter, truth_at_scan, truth_at_nav);
+    });
+  }
   // Flushes; kIoError if any write failed.
-  Status flush() const;
-  std::size_t rows() const { return rows_; }  // rows written (a failed or truncated one is not)
+  Status flush() const { return file_.flush(); }
+  std::size_t rows() const { return file_.rows(); }  // rows written (a failed or truncated one is not)
 
  private:
-  std::FILE* file_ = nullptr;
-  std::unique_ptr<char[]> buffer_;
-  std::size_t rows_ = 0;
-  bool failed_ = false;
+  CsvTrace file_;
 };
 
 }  // namespace kestrel::flight

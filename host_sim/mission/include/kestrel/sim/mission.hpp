@@ -50,10 +50,11 @@ class Mission {
   virtual std::optional<EstimateError> estimate_error_at(TimeUs /*t*/) const { return std::nullopt; }
   // A one-line reason after kFailed.
   virtual std::string failure() const { return {}; }
-  // A per-scan trace (kestrel-sim --trace-scans): a mission that runs a scan matcher writes
-  // one CSV row per scan it processed into `path`, opened here, before start(), and closed
-  // with the run. kUnsupported (the default) when the mission has no scan matcher.
-  virtual Status open_scan_trace(const std::string& /*path*/) { return Status::kUnsupported; }
+  // Per-scan traces (kestrel-sim --trace-scans): a mission that runs a scan matcher writes one
+  // CSV row per scan it processed into out_dir/scan_trace.csv, opened here, before start(),
+  // and closed with the run, and may write traces of its other stages beside it (the compact
+  // SLAM's: slam_trace.csv). kUnsupported (the default) when the mission has no scan matcher.
+  virtual Status open_traces(const std::string& /*out_dir*/) { return Status::kUnsupported; }
   // Files of the mission's own in --out DIR (an estimated trajectory, plots), after the run.
   virtual Status write_outputs(const std::string& /*out_dir*/) const { return Status::kOk; }
   // The mission's layer on render.png (estimated path, planner state), drawn over the true

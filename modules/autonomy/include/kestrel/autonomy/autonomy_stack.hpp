@@ -74,6 +74,16 @@ struct StackCounters {
   uint32_t home_fixes_refused = 0;   // ...and refused
 };
 
+// The newest scan the compact SLAM processed, in the filter's frame (through the SlamFrame it
+// was offered under), for diagnostics: kestrel-sim's SLAM trace compares it with the truth.
+struct SlamStep {
+  TimeUs stamp;             // the scan's
+  slam::SlamResult result;  // poses in the SLAM's frame
+  Pose2 prior;              // the filter's pose at the stamp
+  Pose2 fit;                // the SLAM's best fit (the prior when it searched nothing)
+  SlamFrame frame;          // the SLAM's map in the filter's frame, as the scan was offered
+};
+
 class AutonomyStack {
  public:
   // exec_clock measures task execution time (a real clock even in simulation).
@@ -105,6 +115,10 @@ class AutonomyStack {
   const estimation::NavFilter& filter() const { return filter_; }
   const scan_matching::ScanMatcher& matcher() const { return matcher_; }
   const slam::CompactSlam& slam() const { return slam_; }
+  // Written by background_step(): read them on the thread that calls it (the simulator runs
+  // both on one), or once it is idle. slam_steps() counts the scans processed.
+  const SlamStep& last_slam_step() const { return last_slam_step_; }
+  uint32_t slam_steps() const { return slam_steps_; }
   // Level 3's counts of the home re-localisation; the loop's are in counters().
   const HomeFix& home_fix() const { return home_fix_; }
   const Scheduler& scheduler() const { return scheduler_; }
@@ -162,6 +176,8 @@ class AutonomyStack {
   };
   Mailbox<SlamInput> slam_in_;
   Mailbox<PoseMeasurement2> slam_out_;
+  SlamStep last_slam_step_;  // level 3 only
+  uint32_t slam_steps_ = 0;
   TimeUs last_slam_offer_;
   bool slam_offered_ = false;
   SlamFrame slam_frame_;  // the SLAM's map in the filter's frame (home fixes part them); loop only

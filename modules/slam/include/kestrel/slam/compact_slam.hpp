@@ -49,6 +49,8 @@ inline constexpr uint32_t kTooFar = 1u << 9;        // the correction exceeds it
 struct SlamResult {
   Pose2 pose;               // the correction when kCorrected; otherwise the prior (the scan
                             // is drawn at the best fit unless kTooFar)
+  Pose2 fit;                // the search's best pose, whether handed back or refused (kMatched);
+                            // otherwise the prior
   float level = 0;          // the best fit's mean map value (0 wall .. 255 free)
   float prior_level = 0;    // the prior's
   uint16_t points = 0;      // returns used
@@ -77,6 +79,9 @@ class CompactSlam {
   SlamResult process(const scan_matching::ScanPoints& points, const Pose2& prior);
 
   const SlamMap& map() const { return map_; }
+  // The newest scan's returns as process() thinned them (diagnostics: its fit elsewhere,
+  // mean_level()).
+  const MapScan& last_scan() const { return scan_; }
   const SlamParams& params() const { return params_; }
   const SlamCounters& counters() const { return counters_; }
   bool started() const { return started_; }
