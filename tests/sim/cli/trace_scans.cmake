@@ -99,7 +99,13 @@ if(slam_nan_fit_err_m GREATER 0)
   message(FATAL_ERROR "${slam_trace}: ${slam_nan_fit_err_m} rows without the fit's error")
 endif()
 if(PY)
-  # The summary tool reads it: one row per scan class, the episodes list present.
+  # The summary tools read them: one row per scan class, the episodes list present; one row
+  # for the SLAM trace and one over all.
+  execute_process(COMMAND ${PY} ${SLAM_SUMMARY} ${slam_trace} RESULT_VARIABLE rc OUTPUT_VARIABLE summary
+                  ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT summary MATCHES "slam_trace\\.csv \\| [0-9]+ \\| [0-9]+ \\| " OR NOT summary MATCHES "\\| all 1 \\| ")
+    message(FATAL_ERROR "slam_trace_summary.py on ${slam_trace} (${rc}): ${summary}${err}")
+  endif()
   execute_process(COMMAND ${PY} ${SUMMARY} --episodes ${trace} RESULT_VARIABLE rc OUTPUT_VARIABLE summary
                   ERROR_VARIABLE err)
   if(NOT rc EQUAL 0 OR NOT summary MATCHES "1 trace\\(s\\), [0-9]+ scans" OR NOT summary MATCHES "\\| degenerate \\| "
