@@ -132,6 +132,32 @@ TEST(CompactSlam, AlongACorridorItDoesNotCorrectWhatTheWallsCannotSay) {
   EXPECT_LT(f.corrected_along_x_m, 0.1f);
 }
 
+// With draw_min_curvature a scan due to be drawn is drawn only where the map pins the fit both
+// ways: in a room's corner, yes; along a corridor whose ends are out of reach, where a drifted
+// pose would draw the corridor's walls shifted along themselves, no.
+TEST(CompactSlam, ADrawMinimumCurvatureDrawsOnlyWhereTheMapPinsThePose) {
+  const auto drawn_after_move = [](const test::SegmentWorld& w, float min_curvature) {
+    Rig r;
+    SlamParams p;
+    p.warmup_scans = 2;
+    p.draw_min_curvature = min_curvature;
+    EXPECT_EQ(r.slam->configure(p), Status::kOk);
+    const Pose2 start{0, 0, 0};
+    for (int i = 0; i <= 2; ++i) (void)r.slam->process(test::scan_points(w, test::LaserModel::urg04lx(), start), start);
+    const Pose2 moved{0.4f, 0, 0};  // past draw_every_m
+    return r.slam->process(test::scan_points(w, test::LaserModel::urg04lx(), moved), moved).flags;
+  };
+  using namespace slam_flag;
+  // The room's least curvature there is about 2000 levels/m^2 (its end walls at the reach's
+  // edge), the corridor's about 300.
+  EXPECT_TRUE((drawn_after_move(test::slam_room(), 1000.0f) & kDrawn) != 0);
+  const uint32_t corridor = drawn_after_move(test::slam_corridor(), 1000.0f);
+  EXPECT_EQ(corridor & kDrawn, 0u);
+  EXPECT_TRUE((corridor & kUnpinned) != 0);
+  // Off (0, the default), it is drawn wherever due, as CoreSLAM draws.
+  EXPECT_TRUE((drawn_after_move(test::slam_corridor(), 0.0f) & kDrawn) != 0);
+}
+
 // The search's best pose is reported whether the correction is handed back or refused: what
 // kestrel-sim's SLAM trace compares with the truth to tell a map that could have corrected the
 // filter from one that had followed it.

@@ -51,6 +51,15 @@ TEST(ScanFit, ThinningKeepsAtMostMaxPointsAndDropsWhatTheMapCannotHold) {
   EXPECT_EQ(out.point[0].x, static_cast<int32_t>(std::lround((1.0f + 0.001f) / kCell * kSub)));
 }
 
+TEST(ScanFit, TheKnownShareCountsTheReturnsOnCellsTheMapHasTouched) {
+  const auto map = room_map();
+  MapScan s;
+  thin_to_map_scan(test::scan_points(test::slam_room(), test::LaserModel::urg04lx(), {}), kCell, 300, s);
+  EXPECT_GT(known_share(*map, s, Pose2{}), 0.95f);
+  EXPECT_EQ(known_share(*map, s, Pose2{30.0f, 0, 0}), 0.0f);  // wholly beyond what was drawn
+  EXPECT_EQ(known_share(*map, MapScan{}, Pose2{}), 0.0f);
+}
+
 TEST(ScanFit, TheTruePoseFitsBetterThanAnyPoseNearIt) {
   const auto map = room_map();
   const Pose2 truth{0.3f, -0.4f, 0.2f};

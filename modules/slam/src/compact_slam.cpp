@@ -1,5 +1,6 @@
 #include "kestrel/slam/compact_slam.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace kestrel::slam {
@@ -72,7 +73,8 @@ SlamResult CompactSlam::process(const scan_matching::ScanPoints& points, const P
                                            {params_.anchor_per_m2, params_.anchor_per_rad2},
                                            static_cast<uint32_t>(params_.iterations), prng_);
   // Only the part of the move the map supports; the gain is judged on what is left of it.
-  fit.pose = supported_move(map_, scan_, prior, fit.pose, map_.cell_m(), params_.min_curvature);
+  const FitCurvature curvature = fit_curvature(map_, scan_, fit.pose, map_.cell_m());
+  fit.pose = supported_move(curvature, prior, fit.pose, params_.min_curvature);
   fit.level = mean_level(map_, scan_, fit.pose);
   r.flags = kMatched;
   r.fit = fit.pose;
@@ -96,8 +98,15 @@ SlamResult CompactSlam::process(const scan_matching::ScanPoints& points, const P
   // where the map cannot tell), unless the search jumped beyond the correction's limits.
   const Pose2 at = (r.flags & kTooFar) != 0 ? prior : fit.pose;
   if (due_to_draw(at)) {
-    draw(at);
-    r.flags |= kDrawn;
+    // The curvature of the mean over every return, unknown ones flat at kUnknown, scaled to
+    // the returns the map knows: a scan half on new ground is pinned by the half it knows.
+    if (params_.draw_min_curvature > 0 &&
+        curvature.least() < params_.draw_min_curvature * std::max(0.1f, known_share(map_, scan_, fit.pose))) {
+      r.flags |= kUnpinned;
+    } else {
+      draw(at);
+      r.flags |= kDrawn;
+    }
   }
   return r;
 }

@@ -32,6 +32,17 @@ uint32_t mean_level(const SlamMap& map, const MapScan& scan, const Pose2& pose) 
   return sum / scan.count;
 }
 
+float known_share(const SlamMap& map, const MapScan& scan, const Pose2& pose) {
+  if (scan.count == 0) return 0.0f;
+  const ScanPlacement at(map, pose);
+  uint32_t known = 0;
+  for (uint16_t i = 0; i < scan.count; ++i) {
+    const SubPoint p = at.place(scan.point[i]);
+    known += map.at(p.x >> kSubBits, p.y >> kSubBits) != kUnknown ? 1u : 0u;
+  }
+  return static_cast<float>(known) / static_cast<float>(scan.count);
+}
+
 namespace {
 
 // Roughly standard normal: the sum of four uniforms, centred and scaled to unit variance.
@@ -73,10 +84,9 @@ FitResult monte_carlo_search(const SlamMap& map, const MapScan& scan, const Pose
   return r;
 }
 
-Pose2 supported_move(const SlamMap& map, const MapScan& scan, const Pose2& start, const Pose2& best, float h_m,
-                     float min_curvature) {
+FitCurvature fit_curvature(const SlamMap& map, const MapScan& scan, const Pose2& at, float h_m) {
   const auto f = [&](float dx, float dy) {
-    return static_cast<float>(mean_level(map, scan, Pose2{best.x + dx, best.y + dy, best.theta})) / kSub;
+    return static_cast<float>(mean_level(map, scan, Pose2{at.x + dx, at.y + dy, at.theta})) / kSub;
   };
   const float f0 = f(0, 0), fx = f(h_m, 0), fy = f(0, h_m);
   const float h2 = h_m * h_m;
@@ -84,14 +94,16 @@ Pose2 supported_move(const SlamMap& map, const MapScan& scan, const Pose2& start
   const float c = (fy + f(0, -h_m) - 2.0f * f0) / h2;
   const float b = (f(h_m, h_m) - fx - fy + f0) / h2;
   // Eigen-directions of [[a, b], [b, c]]: the first at angle phi, the second across it.
-  const float phi = 0.5f * std::atan2(2.0f * b, a - c);
   const float mean = 0.5f * (a + c), half = std::sqrt(0.25f * (a - c) * (a - c) + b * b);
-  const float l1 = mean + half, l2 = mean - half;
-  const float u1x = std::cos(phi), u1y = std::sin(phi);
+  return {0.5f * std::atan2(2.0f * b, a - c), mean + half, mean - half};
+}
+
+Pose2 supported_move(const FitCurvature& k, const Pose2& start, const Pose2& best, float min_curvature) {
+  const float u1x = std::cos(k.first_rad), u1y = std::sin(k.first_rad);
   float mx = best.x - start.x, my = best.y - start.y;
   const float along1 = mx * u1x + my * u1y, along2 = -mx * u1y + my * u1x;
-  const float keep1 = l1 >= min_curvature ? along1 : 0.0f;
-  const float keep2 = l2 >= min_curvature ? along2 : 0.0f;
+  const float keep1 = k.first >= min_curvature ? along1 : 0.0f;
+  const float keep2 = k.second >= min_curvature ? along2 : 0.0f;
   mx = keep1 * u1x - keep2 * u1y;
   my = keep1 * u1y + keep2 * u1x;
   if (!std::isfinite(mx) || !std::isfinite(my)) return start;

@@ -11,6 +11,8 @@ std::array<params::ParamField, kSlamParamCount> slam_param_fields(SlamParams& p)
       {"weight", &p.weight, 1.0f, 255.0f, "1/256", "how far a cell moves towards a return's profile"},
       {"draw_every_m", &p.draw_every_m, 0.0f, 10.0f, "m", "a scan is drawn after the sensor has moved this far"},
       {"draw_every_rad", &p.draw_every_rad, 0.0f, 3.2f, "rad", "...or turned this much since the last scan drawn"},
+      {"draw_min_curvature", &p.draw_min_curvature, 0.0f, 1e7f, "level/m^2",
+       "a scan is drawn only where the fit's curvature is at least this both ways (0: always)"},
       {"iterations", &p.iterations, 1.0f, 5000.0f, "1", "Monte Carlo candidates per scan"},
       {"sigma_xy_m", &p.sigma_xy_m, 0.001f, 2.0f, "m", "first spread of the candidates, position"},
       {"sigma_theta_rad", &p.sigma_theta_rad, 0.0f, 1.0f, "rad", "first spread of the candidates, heading"},

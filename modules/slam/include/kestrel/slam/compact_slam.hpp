@@ -44,6 +44,8 @@ inline constexpr uint32_t kNotFinite = 1u << 6;     // the prior is not finite: 
 inline constexpr uint32_t kNoFit = 1u << 7;         // best fit above max_fit_level
 inline constexpr uint32_t kNoGain = 1u << 8;        // not min_gain_level better than the prior
 inline constexpr uint32_t kTooFar = 1u << 9;        // the correction exceeds its limits
+inline constexpr uint32_t kUnpinned = 1u << 10;     // due to be drawn, but the map does not pin
+                                                    // the fit both ways (draw_min_curvature)
 }  // namespace slam_flag
 
 struct SlamResult {

@@ -52,6 +52,9 @@ class ScanPlacement {
 // Mean map value under the scan at `pose`, in 1/256 of a level (0 .. 65280); lower fits better.
 uint32_t mean_level(const SlamMap& map, const MapScan& scan, const Pose2& pose);
 
+// The share of the scan's returns at `pose` that land on cells the map has drawn or cleared.
+float known_share(const SlamMap& map, const MapScan& scan, const Pose2& pose);
+
 struct SearchSpread {
   float xy_m = 0.08f;
   float theta_rad = 0.03f;
@@ -79,13 +82,24 @@ struct FitResult {
 FitResult monte_carlo_search(const SlamMap& map, const MapScan& scan, const Pose2& start, SearchSpread spread,
                              SearchAnchor anchor, uint32_t iterations, Prng& prng);
 
-// The part of a search's move from `start` to `best` that the map supports. The fit's curvature
-// at `best` is measured over one step `h_m` along x, y and the diagonal; along an eigen-direction
-// where it is below `min_curvature` (levels per m^2) the map cannot place the scan (the axis of
-// a corridor whose ends are out of reach), and the move's component along it is undone: there
-// the search follows the map's noise, or the pull of the unknown cells ahead of the drawn
-// walls, which took a filter that held still 0.7 m back along a synthetic corridor.
-Pose2 supported_move(const SlamMap& map, const MapScan& scan, const Pose2& start, const Pose2& best, float h_m,
-                     float min_curvature);
+// How sharply the scan's fit rises as its pose moves from `at`, in levels per m^2, measured
+// over one step `h_m` along x, y and the diagonal: the curvature along its two
+// eigen-directions, the first at first_rad, the second across it. Where one is low the map
+// cannot place the scan along that direction (the axis of a corridor whose ends are out of
+// reach).
+struct FitCurvature {
+  float first_rad = 0;
+  float first = 0;
+  float second = 0;
+  float least() const { return first < second ? first : second; }
+};
+FitCurvature fit_curvature(const SlamMap& map, const MapScan& scan, const Pose2& at, float h_m);
+
+// The part of a search's move from `start` to `best` that the map supports, given the fit's
+// curvature at `best`: along an eigen-direction where it is below `min_curvature` the move's
+// component is undone: there the search follows the map's noise, or the pull of the unknown
+// cells ahead of the drawn walls, which took a filter that held still 0.7 m back along a
+// synthetic corridor.
+Pose2 supported_move(const FitCurvature& at_best, const Pose2& start, const Pose2& best, float min_curvature);
 
 }  // namespace kestrel::slam

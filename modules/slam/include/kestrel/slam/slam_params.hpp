@@ -19,6 +19,11 @@ struct SlamParams {
   // times a second, and the map would follow the filter instead of holding it.
   float draw_every_m = 0.3f;
   float draw_every_rad = 0.2f;
+  // A scan due to be drawn is drawn only where the fit's curvature, over the returns on cells
+  // the map knows, is at least this in both directions (levels/m^2): where what the map holds
+  // pins the pose, so that a pose drifted along a direction the map cannot tell (a wall with no
+  // corner in reach) draws nothing. 0 draws wherever due (CoreSLAM).
+  float draw_min_curvature = 0.0f;
   // --- search (scan_fit.hpp)
   float iterations = 200.0f;      // Monte Carlo candidates per scan
   float sigma_xy_m = 0.08f;       // first spread of the candidates around the best so far
@@ -36,7 +41,7 @@ struct SlamParams {
   float max_correction_rad = 0.1f;
 };
 
-inline constexpr std::size_t kSlamParamCount = 19;
+inline constexpr std::size_t kSlamParamCount = 20;
 std::array<params::ParamField, kSlamParamCount> slam_param_fields(SlamParams& p);
 Status validate(const SlamParams& p);
 // Reads a parameter file over `out` (keys absent keep their values); on any error, `out` is
