@@ -118,6 +118,10 @@ int main(int argc, char** argv) {
   };
   const RunResult run = run_mission(sim, *mission, Duration::from_s(opt.duration_s), hooks);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  if (run.status == Status::kIoError) {  // e.g. the SLAM trace, opened as the mission starts
+    std::fprintf(stderr, "kestrel-sim: %s\n", run.message.c_str());
+    return 1;
+  }
   if (run.status != Status::kOk) return usage_error(run.message);
 
   const std::string dir = opt.out_dir + "/";

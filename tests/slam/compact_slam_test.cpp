@@ -158,6 +158,38 @@ TEST(CompactSlam, ADrawMinimumCurvatureDrawsOnlyWhereTheMapPinsThePose) {
   EXPECT_TRUE((drawn_after_move(test::slam_corridor(), 0.0f) & kDrawn) != 0);
 }
 
+// The curvature is judged over the returns the map knows: a scan turned half onto ground the
+// map has not drawn is pinned by the half it knows, though the unknown half, flat at kUnknown,
+// dilutes the curvature of the mean over all its returns.
+TEST(CompactSlam, APartlyNewScanIsJudgedPinnedByTheReturnsTheMapKnows) {
+  const test::SegmentWorld w = test::slam_room();
+  const test::LaserModel laser = test::LaserModel::urg04lx();
+  const Pose2 drawn_at{0, 0, 0};
+  const Pose2 turned{0, 0, 2.2f};  // the 240-degree fan turned well onto the side not drawn
+  // What the gate will see at the turned pose, on a map drawn at drawn_at only.
+  Rig probe;
+  SlamParams p;
+  p.warmup_scans = 2;
+  ASSERT_EQ(probe.slam->configure(p), Status::kOk);
+  for (int i = 0; i <= 2; ++i) (void)probe.slam->process(test::scan_points(w, laser, drawn_at), drawn_at);
+  MapScan scan;
+  thin_to_map_scan(test::scan_points(w, laser, turned), probe.slam->map().cell_m(), 300, scan);
+  const float least = fit_curvature(probe.slam->map(), scan, turned, probe.slam->map().cell_m()).least();
+  const float share = known_share(probe.slam->map(), scan, turned);
+  ASSERT_GT(share, 0.2f);
+  ASSERT_LT(share, 0.8f);
+  // A threshold the diluted curvature misses and the known returns' curvature reaches.
+  const float threshold = least / std::sqrt(share);
+  ASSERT_GT(least / share, threshold);
+
+  Rig r;
+  p.draw_min_curvature = threshold;
+  ASSERT_EQ(r.slam->configure(p), Status::kOk);
+  for (int i = 0; i <= 2; ++i) (void)r.slam->process(test::scan_points(w, laser, drawn_at), drawn_at);
+  const uint32_t flags = r.slam->process(test::scan_points(w, laser, turned), turned).flags;
+  EXPECT_TRUE((flags & slam_flag::kDrawn) != 0) << flags;
+}
+
 // The search's best pose is reported whether the correction is handed back or refused: what
 // kestrel-sim's SLAM trace compares with the truth to tell a map that could have corrected the
 // filter from one that had followed it.

@@ -591,7 +591,15 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
 }
 
 Status AutonomyMission::write_outputs(const std::string& dir) const {
-  if (trace_.flush() != Status::kOk || slam_trace_.flush() != Status::kOk) return Status::kIoError;
+  // A trace that could not be written keeps neither the other trace nor the flight's files
+  // from being written.
+  const Status scan = trace_.flush();
+  const Status slam = slam_trace_.flush();
+  const Status files = write_flight_files(dir);
+  return scan == Status::kOk && slam == Status::kOk && files == Status::kOk ? Status::kOk : Status::kIoError;
+}
+
+Status AutonomyMission::write_flight_files(const std::string& dir) const {
   output::TumWriter tum;
   if (tum.open(dir + "/trajectory_est.tum") != Status::kOk) return Status::kIoError;
   for (const EstimateSample& s : samples_)

@@ -99,7 +99,11 @@ SlamResult CompactSlam::process(const scan_matching::ScanPoints& points, const P
   const Pose2 at = (r.flags & kTooFar) != 0 ? prior : fit.pose;
   if (due_to_draw(at)) {
     // The curvature of the mean over every return, unknown ones flat at kUnknown, scaled to
-    // the returns the map knows: a scan half on new ground is pinned by the half it knows.
+    // the returns the map knows: a scan half on new ground is pinned by the half it knows. Both
+    // are taken near where the scan would be drawn: the curvature where the search ended (it
+    // is measured there for supported_move), the share at the supported fit. The share counts
+    // at least a tenth, so that a scan almost wholly on new ground is not judged pinned on
+    // the curvature of a handful of returns.
     if (params_.draw_min_curvature > 0 &&
         curvature.least() < params_.draw_min_curvature * std::max(0.1f, known_share(map_, scan_, fit.pose))) {
       r.flags |= kUnpinned;

@@ -96,6 +96,8 @@ class AutonomyMission final : public sim::Mission {
   void score(sim::Simulation& sim);
   void trace(sim::Simulation& sim);
   void trace_slam(sim::Simulation& sim);
+  // write_outputs' files but the traces: trajectory_est.tum, the maps, the plots.
+  Status write_flight_files(const std::string& dir) const;
 
   FlightOptions options_;
   class RealClock;

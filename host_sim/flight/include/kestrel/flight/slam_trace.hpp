@@ -7,13 +7,13 @@
 // Columns (header row first; angles in rad, lengths in m, time in s of simulated time):
 //   t_s                the scan's stamp
 //   flags              SlamResult flags (compact_slam.hpp slam_flag), as an integer, and
-//   started drawn matched corrected warming_up too_few_points no_fit no_gain too_far
-//                      the same bits as 0/1
+//   started drawn matched corrected warming_up too_few_points not_finite no_fit no_gain
+//   too_far unpinned   every one of those bits as 0/1
 //   points level prior_level   returns used; the best fit's and the prior's mean map value
 //                      (0 wall .. 255 free; 0 when nothing was searched)
 //   prior_x prior_y prior_theta   the filter's pose at the stamp
-//   fit_x fit_y fit_theta         the search's best pose (the prior when nothing was searched),
-//                      both in the filter's frame
+//   fit_x fit_y fit_theta         the search's best pose after supported_move (the prior when
+//                      nothing was searched), both in the filter's frame
 //   fit_move_m         |fit - prior|: what a correction would move
 //   true_x true_y true_yaw   the true pose at the stamp
 //   prior_err_m fit_err_m    |prior - truth| and |fit - truth|: a fit nearer the truth than

@@ -177,7 +177,7 @@ class AutonomyStack {
   Mailbox<SlamInput> slam_in_;
   Mailbox<PoseMeasurement2> slam_out_;
   SlamStep last_slam_step_;  // level 3 only
-  uint32_t slam_steps_ = 0;
+  uint32_t slam_steps_ = 0;  // level 3 only
   TimeUs last_slam_offer_;
   bool slam_offered_ = false;
   SlamFrame slam_frame_;  // the SLAM's map in the filter's frame (home fixes part them); loop only

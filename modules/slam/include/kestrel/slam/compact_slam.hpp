@@ -20,6 +20,8 @@
 // but only once the sensor has moved draw_every_m or turned draw_every_rad since the last scan
 // drawn: drawn ten times a second, the walls took the pose of the last second, the map followed
 // the filter instead of holding it, and two copies of a wall made the search snap between them.
+// draw_min_curvature (off by default) draws only where the map's walls pin the fit both ways;
+// flown, it starved the SLAM of corrections (modules/exploration/EXPERIMENTS.md).
 //
 // No heap: the map is the caller's (1 MiB, allocated once); everything else is inside.
 #include <cstdint>
@@ -51,8 +53,8 @@ inline constexpr uint32_t kUnpinned = 1u << 10;     // due to be drawn, but the 
 struct SlamResult {
   Pose2 pose;               // the correction when kCorrected; otherwise the prior (the scan
                             // is drawn at the best fit unless kTooFar)
-  Pose2 fit;                // the search's best pose, whether handed back or refused (kMatched);
-                            // otherwise the prior
+  Pose2 fit;                // the search's best pose after supported_move, whether handed back
+                            // or refused (kMatched); otherwise the prior
   float level = 0;          // the best fit's mean map value (0 wall .. 255 free)
   float prior_level = 0;    // the prior's
   uint16_t points = 0;      // returns used
