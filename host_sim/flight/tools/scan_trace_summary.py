@@ -26,21 +26,13 @@ Standard library only. Example:
   host_sim/flight/tools/scan_trace_summary.py --episodes out/explore/scan_trace.csv
 """
 import argparse
-import csv
 import math
-import os
 import sys
+
+from trace_files import find_traces, load_rows
 
 CLASSES = ["rejected", "lost", "few", "degenerate", "weak", "good"]
 LETTER = {"rejected": "R", "lost": "L", "few": "F", "degenerate": "D", "weak": "W", "good": "G"}
-
-
-def load(path):
-    with open(path, newline="") as f:
-        rows = []
-        for r in csv.DictReader(f):
-            rows.append({k: float(v) for k, v in r.items()})
-    return rows
 
 
 def classify(r, few_points, weak_ratio):
@@ -120,14 +112,7 @@ def main():
     p.add_argument("--window", type=float, default=15, help="episode window, s (15)")
     p.add_argument("--growth", type=float, default=0.4, help="episode error growth, m (0.4)")
     args = p.parse_args()
-    paths = []
-    for t in args.traces:
-        if os.path.isdir(t):
-            for root, _, files in os.walk(t):
-                if "scan_trace.csv" in files:
-                    paths.append(os.path.join(root, "scan_trace.csv"))
-        else:
-            paths.append(t)
+    paths = find_traces(args.traces, "scan_trace.csv")
     if not paths:
         print("scan_trace_summary: no scan_trace.csv found", file=sys.stderr)
         return 2
@@ -135,7 +120,7 @@ def main():
     eps = []
     for path in sorted(paths):
         try:
-            rows = load(path)
+            rows = load_rows(path)
         except (OSError, KeyError, ValueError) as e:
             print("scan_trace_summary: %s: %s" % (path, e), file=sys.stderr)
             return 2

@@ -25,15 +25,10 @@ Standard library only. Example:
   host_sim/flight/tools/slam_trace_summary.py out/explore/slam_trace.csv
 """
 import argparse
-import csv
 import math
-import os
 import sys
 
-
-def load(path):
-    with open(path, newline="") as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+from trace_files import find_traces, load_rows
 
 
 def percentile(sorted_values, q):
@@ -91,14 +86,7 @@ def main():
     p.add_argument("--level-gain", type=float, default=6.0,
                    help="'map holds truth' by at least this many levels (6, the SLAM's min_gain_level)")
     args = p.parse_args()
-    paths = []
-    for t in args.traces:
-        if os.path.isdir(t):
-            for root, _, files in os.walk(t):
-                if "slam_trace.csv" in files:
-                    paths.append(os.path.join(root, "slam_trace.csv"))
-        else:
-            paths.append(t)
+    paths = find_traces(args.traces, "slam_trace.csv")
     if not paths:
         print("slam_trace_summary: no slam_trace.csv found", file=sys.stderr)
         return 2
@@ -108,7 +96,7 @@ def main():
     total = None
     for path in sorted(paths):
         try:
-            s = summarise(load(path), args)
+            s = summarise(load_rows(path), args)
         except (OSError, KeyError, ValueError) as e:
             print("slam_trace_summary: %s: %s" % (path, e), file=sys.stderr)
             return 2
