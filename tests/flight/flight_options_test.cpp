@@ -55,7 +55,8 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   const sim::MissionOptions opt =
       options({{"approach", "off"}, {"approach_blind_mps", "0.2"}, {"srt_range_m", "5"}, {"altitude_m", "1.2"},
                {"speed_limit_mps", "0.8"}, {"explorer", "frontier"}, {"frontier_reach_m", "8"},
-               {"frontier_relaxed_m", "0.3"}, {"frontier_coastal", "0"}});
+               {"frontier_relaxed_m", "0.3"}, {"frontier_coastal", "0"}, {"yaw_rate_limit_radps", "0.25"},
+               {"look_across_s", "3"}, {"look_across_release_s", "1.5"}});
   FlightOptions f;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
   EXPECT_FALSE(f.stack.explorer.approach.enabled);
@@ -67,12 +68,20 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   EXPECT_FLOAT_EQ(f.stack.explorer.frontier.reach_m, 8.0f);
   EXPECT_FLOAT_EQ(f.stack.explorer.frontier.relaxed_lethal_m, 0.3f);
   EXPECT_FLOAT_EQ(f.stack.explorer.frontier.coastal_fraction, 0.0f);
+  EXPECT_FLOAT_EQ(f.stack.explorer.guidance.yaw_rate_limit_radps, 0.25f);
+  EXPECT_FLOAT_EQ(f.stack.explorer.look_across.after_s, 3.0f);
+  EXPECT_FLOAT_EQ(f.stack.explorer.look_across.release_s, 1.5f);
   EXPECT_EQ(f.stack.explorer.validate(), Status::kOk);
   for (const auto& [key, bad] : {std::pair<const char*, const char*>{"approach", "maybe"},
                                  {"approach_blind_mps", "-1"},
                                  {"speed_limit_mps", "0"},
                                  {"speed_limit_mps", "fast"},
                                  {"speed_limit_mps", "6"},
+                                 {"yaw_rate_limit_radps", "0"},
+                                 {"yaw_rate_limit_radps", "11"},
+                                 {"look_across_s", "-1"},
+                                 {"look_across_s", "soon"},
+                                 {"look_across_release_s", "601"},
                                  {"srt_range_m", "0"},
                                  {"explorer", "grid"},
                                  {"frontier_reach_m", "0"},

@@ -275,6 +275,20 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       if (!parse_double(value, d) || d <= 0 || d > 5)
         return "speed_limit_mps: '" + value + "' is not a speed in (0, 5] m/s";
       out.stack.explorer.guidance.speed_limit_mps = static_cast<float>(d);
+    } else if (key == "yaw_rate_limit_radps" && kind == mission::MissionKind::kExplore) {
+      // Section V's yaw-rate limit on the heading command (0.5 rad/s by default).
+      if (!parse_double(value, d) || d <= 0 || d > 10)
+        return "yaw_rate_limit_radps: '" + value + "' is not a rate in (0, 10] rad/s";
+      out.stack.explorer.guidance.yaw_rate_limit_radps = static_cast<float>(d);
+    } else if (key == "look_across_s" && kind == mission::MissionKind::kExplore) {
+      // Turn the heading across a degenerate match's axis after this long (0: off, the default).
+      if (!parse_double(value, d) || d < 0 || d > 600)
+        return "look_across_s: '" + value + "' is not a time in [0, 600] s";
+      out.stack.explorer.look_across.after_s = static_cast<float>(d);
+    } else if (key == "look_across_release_s" && kind == mission::MissionKind::kExplore) {
+      if (!parse_double(value, d) || d < 0 || d > 600)
+        return "look_across_release_s: '" + value + "' is not a time in [0, 600] s";
+      out.stack.explorer.look_across.release_s = static_cast<float>(d);
     } else if (key == "approach_blind_mps" && kind == mission::MissionKind::kExplore) {
       if (!parse_double(value, d) || d < 0 || d > 10)
         return "approach_blind_mps: '" + value + "' is not a speed in [0, 10] m/s";
@@ -549,6 +563,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   if (const exploration::Explorer* e = stack_->explorer(); e != nullptr) {
     out.emplace_back("approach_scaled", e->status().approach_scaled);
     out.emplace_back("approach_stops", e->status().approach_stops);
+    out.emplace_back("look_across_turns", e->status().look_across_turns);
     out.emplace_back("return_setpoints_unbounded", c.guidance_rejected);
     out.emplace_back("explorer_finished", e->finished() ? 1.0 : 0.0);
     if (e->planner() != nullptr) {

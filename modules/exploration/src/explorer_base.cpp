@@ -39,6 +39,7 @@ Status ExplorerBase::configure(const Params& params, const BeamGeometry& geometr
   if (field_.configure(geometry, params.wall) != Status::kOk) return Status::kInvalidArgument;
   if (approach_.configure(params.approach, geometry) != Status::kOk) return Status::kInvalidArgument;
   params_ = params;
+  look_.configure(params.look_across);
   if (configure_strategy() != Status::kOk) return Status::kInvalidArgument;
   configured_ = true;
   reset();
@@ -47,6 +48,7 @@ Status ExplorerBase::configure(const Params& params, const BeamGeometry& geometr
 
 void ExplorerBase::reset() {
   yaw_ = YawRateLimiter{};
+  look_.reset();
   have_position_ = false;
   have_time_ = false;
   status_ = ExplorerStatus{};
@@ -118,7 +120,10 @@ Status ExplorerBase::step(const NavState& nav, const LaserScan& scan, GuidanceSe
       v = limit_speed(limit_approach(scan, pose, v), params_.guidance.speed_limit_mps);
     out.velocity_mps = {v.x(), v.y(), 0.0f};
   }
+  heading_target = look_.heading(heading_target);
   status_.heading_target_rad = heading_target;
+  status_.looking_across = look_.active();
+  status_.look_across_turns = look_.looks();
   out.heading_rad = yaw_.step(heading_target, now, params_.guidance.yaw_rate_limit_radps);
   status_.last = Status::kOk;
   ++status_.steps;

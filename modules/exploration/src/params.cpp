@@ -90,9 +90,15 @@ Status Params::validate() const {
   // A waypoint is drawn clearance_m from the returns: the limiter must let the vehicle get there.
   const bool approach_ok = approach.validate() == Status::kOk &&
                            (!approach.enabled || approach.stop_distance_m <= srt.clearance_m);
-  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach_ok && frontier.validate() == Status::kOk
+  return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach_ok && frontier.validate() == Status::kOk &&
+                 look_across.valid()
              ? Status::kOk
              : Status::kInvalidArgument;
+}
+
+bool LookAcrossParams::valid() const {
+  auto in_range = [](float s) { return std::isfinite(s) && s >= 0.0f && s <= 600.0f; };
+  return in_range(after_s) && in_range(release_s);
 }
 
 Status FrontierParams::validate() const {

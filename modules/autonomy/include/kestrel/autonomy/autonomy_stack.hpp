@@ -185,6 +185,7 @@ class AutonomyStack {
 
   LaserScan scan_;             // the scan being matched
   LaserScan guidance_scan_;    // the newest matched scan, for the explorer
+  exploration::MatchConstraint guidance_match_{};  // and what its match could measure
   bool guidance_scan_fresh_ = false;
   LaserScan newest_scan_;      // the newest scan, matched or not: the flight home's limiter
   bool newest_scan_fresh_ = false;

@@ -20,6 +20,7 @@
 #include "kestrel/core/status.hpp"
 #include "kestrel/exploration/approach_limiter.hpp"
 #include "kestrel/exploration/beam_geometry.hpp"
+#include "kestrel/exploration/look_across.hpp"
 #include "kestrel/exploration/params.hpp"
 #include "kestrel/exploration/srt_star_planner.hpp"
 #include "kestrel/exploration/wall_follow_field.hpp"
@@ -44,6 +45,8 @@ struct ExplorerStatus {
   Eigen::Vector2f v_wf = Eigen::Vector2f::Zero();  // world frame, m/s, before the speed limit
   Eigen::Vector2f v_fr = Eigen::Vector2f::Zero();  // world frame, m/s (blend)
   float heading_target_rad = 0;                    // before the yaw-rate limit
+  bool looking_across = false;                     // the heading is across a degenerate match's axis
+  uint32_t look_across_turns = 0;                  // times it turned across (LookAcross), since reset
   ApproachResult approach;                         // the approach limiter on the last command
   uint32_t approach_scaled = 0;                    // commands the limiter scaled (not settled), since reset
   uint32_t approach_stops = 0;                     // ... of those, to zero
@@ -64,6 +67,10 @@ class Explorer {
   // writes a hold: kVelocity with zero velocity at the last good position, heading held, and
   // leaves the exploration state untouched.
   virtual Status step(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& out) = 0;
+  // The newest scan match's constraint, before the step on that scan: with
+  // LookAcrossParams::after_s > 0 a long degenerate spell turns the heading across its axis
+  // (look_across.hpp). Ignored otherwise.
+  virtual void note_match(const MatchConstraint& m) = 0;
   // Bounds a velocity set-point from elsewhere (the flight home along the trail) with this
   // explorer's approach limiter, against the scan and the heading of nav. kOk also when the
   // limiter is off or the set-point is not kVelocity (left as it is); kInvalidArgument for an

@@ -1,7 +1,8 @@
 #pragma once
 // What the four explorers share: input checks with a defined hold for every bad input, the
 // wall-following field, the yaw-rate and speed limits of paper 002 section V, the approach
-// limiter on every velocity command, and the status.
+// limiter on every velocity command, the heading across a degenerate match (off by default),
+// and the status.
 // A derived explorer only writes its strategy in plan().
 #include "kestrel/core/time.hpp"
 #include "kestrel/exploration/explorer.hpp"
@@ -15,6 +16,7 @@ class ExplorerBase : public Explorer {
   void reset() override;
   Status step(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& out) final;
   Status bound_velocity(const NavState& nav, const LaserScan& scan, GuidanceSetpoint& setpoint) final;
+  void note_match(const MatchConstraint& m) final { look_.note(m); }
   const ExplorerStatus& status() const override { return status_; }
   const Params& params() const { return params_; }
 
@@ -43,6 +45,7 @@ class ExplorerBase : public Explorer {
 
   ApproachLimiter approach_;
   YawRateLimiter yaw_;
+  LookAcross look_;
   Point2 last_position_{};
   bool have_position_ = false;
   TimeUs last_time_{};

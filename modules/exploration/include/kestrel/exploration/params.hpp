@@ -172,6 +172,15 @@ struct GuidanceParams {
                                         // return to r_t (the field alone centres in a room)
 };
 
+// Facing across an axis the scan matcher reports it cannot measure (look_across.hpp): every
+// explorer's heading; not in the papers.
+struct LookAcrossParams {
+  float after_s = 0.0f;    // degenerate this long before turning across (0 = off)
+  float release_s = 2.0f;  // and back towards the target once the match has been clear this long
+  // Both finite and within [0, 600] s.
+  bool valid() const;
+};
+
 // The approach limiter (approach_limiter.hpp): the velocity-commanding explorers (blend,
 // wallfollow) and the flight home (Explorer::bound_velocity) never close on a laser return
 // faster than gain * (range - stop_distance_m). Not part of paper 002, whose blend keeps off
@@ -260,6 +269,7 @@ struct Params {
   GuidanceParams guidance;
   ApproachParams approach;
   FrontierParams frontier;
+  LookAcrossParams look_across;
 
   // kInvalidArgument when a value is outside its domain (non-finite, negative, r_safe >= r_t,
   // more sectors than kMaxSectors, ...).

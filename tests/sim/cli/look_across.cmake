@@ -1,0 +1,27 @@
+# kestrel-sim --mission-arg look_across_s: the stack hands the explorer each scan match's
+# constraint, and in the hallway world (a corridor the URG-04LX matches degenerately) an
+# explore flight with the option turns across at least once, counted in metrics.json; without
+# it, never.
+set(common --world hallway --laser urg04lx --mission explore --duration 40 --seed 3)
+file(REMOVE_RECURSE ${OUT}/on ${OUT}/off)
+foreach(run on off)
+  set(extra "")
+  if(run STREQUAL "on")
+    set(extra --mission-arg look_across_s=1)
+  endif()
+  execute_process(COMMAND ${SIM} ${common} ${extra} --out ${OUT}/${run} RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${run}: kestrel-sim failed (${rc}): ${err}")
+  endif()
+  file(READ ${OUT}/${run}/metrics.json json)
+  string(JSON turns_${run} ERROR_VARIABLE missing GET "${json}" look_across_turns)
+  if(missing)
+    message(FATAL_ERROR "${run}: metrics.json has no look_across_turns: ${missing}")
+  endif()
+endforeach()
+if(turns_on LESS 1)
+  message(FATAL_ERROR "look_across_s=1 in a corridor: ${turns_on} turns across, expected at least one")
+endif()
+if(NOT turns_off EQUAL 0)
+  message(FATAL_ERROR "without look_across_s: ${turns_off} turns across, expected none")
+endif()
