@@ -145,7 +145,13 @@ TEST(CompactSlam, ADrawMinimumCurvatureDrawsOnlyWhereTheMapPinsThePose) {
     const Pose2 start{0, 0, 0};
     for (int i = 0; i <= 2; ++i) (void)r.slam->process(test::scan_points(w, test::LaserModel::urg04lx(), start), start);
     const Pose2 moved{0.4f, 0, 0};  // past draw_every_m
-    return r.slam->process(test::scan_points(w, test::LaserModel::urg04lx(), moved), moved).flags;
+    const uint32_t flags = r.slam->process(test::scan_points(w, test::LaserModel::urg04lx(), moved), moved).flags;
+    // The counts agree with the flags: two scans drawn before (the first, the warm-up's; the
+    // third, matched where the second was drawn, was not due), and this one drawn or kept out.
+    const SlamCounters& c = r.slam->counters();
+    EXPECT_EQ(c.drawn, (flags & slam_flag::kDrawn) != 0 ? 3u : 2u);
+    EXPECT_EQ(c.unpinned, (flags & slam_flag::kUnpinned) != 0 ? 1u : 0u);
+    return flags;
   };
   using namespace slam_flag;
   // The room's least curvature there is about 2000 levels/m^2 (its end walls at the reach's

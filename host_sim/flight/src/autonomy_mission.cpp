@@ -519,11 +519,13 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("map_rebuilds", stack_->map_rebuilds());
   out.emplace_back("scans_lost", c.scans_lost);
   out.emplace_back("map_restarts", c.map_restarts);
-  // The compact SLAM's own counts (all zero when it is off): scans it matched or drew, and the
-  // corrections it handed to the filter (nav.corrections and nav.corrections_rejected say what
+  // The compact SLAM's own counts (all zero when it is off): scans it matched or drew, the
+  // corrections it handed to the filter, the scans drawn and those draw_min_curvature kept out (nav.corrections and nav.corrections_rejected say what
   // the filter made of them).
   out.emplace_back("slam_scans", stack_->slam().counters().scans);
   out.emplace_back("slam_corrections", stack_->slam().counters().corrections);
+  out.emplace_back("slam_drawn", stack_->slam().counters().drawn);
+  out.emplace_back("slam_unpinned", stack_->slam().counters().unpinned);
   out.emplace_back("imu_silences", stack_->silences().imu);
   out.emplace_back("scan_silences", stack_->silences().scan);
   out.emplace_back("setpoints_sent", c.setpoints_sent);

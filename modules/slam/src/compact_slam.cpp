@@ -21,6 +21,7 @@ bool CompactSlam::due_to_draw(const Pose2& pose) const {
 
 void CompactSlam::draw(const Pose2& pose) {
   last_drawn_ = pose;
+  ++counters_.drawn;
   const ScanPlacement at(map_, pose);
   const float to_sub = kSub / map_.cell_m();
   const auto hole_half = static_cast<int32_t>(0.5f * params_.hole_width_m * to_sub);
@@ -107,6 +108,7 @@ SlamResult CompactSlam::process(const scan_matching::ScanPoints& points, const P
     if (params_.draw_min_curvature > 0 &&
         curvature.least() < params_.draw_min_curvature * std::max(0.1f, known_share(map_, scan_, fit.pose))) {
       r.flags |= kUnpinned;
+      ++counters_.unpinned;
     } else {
       draw(at);
       r.flags |= kDrawn;

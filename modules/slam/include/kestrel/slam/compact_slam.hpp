@@ -70,6 +70,8 @@ struct SlamCounters {
   uint32_t no_gain = 0;
   uint32_t too_far = 0;
   uint32_t too_few_points = 0;  // neither matched nor drawn
+  uint32_t drawn = 0;           // drawn into the map (kDrawn), the first scan included
+  uint32_t unpinned = 0;        // due to be drawn and not, the map not pinning them (kUnpinned)
 };
 
 class CompactSlam {
