@@ -282,7 +282,6 @@ void AutonomyStack::scan_task(TimeUs now) {
   offer_scan_to_home_fix();
   guidance_scan_ = scan_;
   guidance_match_.stamp = scan_.stamp;
-  // A lost match measured nothing either way: it neither starts nor ends a degenerate spell.
   guidance_match_.degenerate = (last_match_.measurement.flags & mf::kDegenerate) != 0;
   // In the matcher's frame; the heading is commanded in the filter's, turned by the SLAM.
   guidance_match_.flat_axis_rad = wrap_angle(last_match_.major_axis_rad + filter_.frame_correction().theta);
@@ -293,7 +292,7 @@ void AutonomyStack::scan_task(TimeUs now) {
 void AutonomyStack::guidance_task(TimeUs now) {
   // The explorer plans once per scan, on the newest one; between scans its set-point stands.
   if (explorer_ != nullptr && guidance_scan_fresh_ && mission_.phase() == mission::Phase::kExplore) {
-    if (guidance_match_.usable) explorer_->note_match(guidance_match_);
+    explorer_->note_match(guidance_match_);
     (void)explorer_->step(nav_, guidance_scan_, explorer_out_.setpoint);
     explorer_out_.finished = explorer_->finished();
     guidance_scan_fresh_ = false;

@@ -91,14 +91,14 @@ Status Params::validate() const {
   const bool approach_ok = approach.validate() == Status::kOk &&
                            (!approach.enabled || approach.stop_distance_m <= srt.clearance_m);
   return wall_ok && srt_ok && keep_out_ok && guidance_ok && approach_ok && frontier.validate() == Status::kOk &&
-                 look_across.valid()
+                 look_across.validate() == Status::kOk
              ? Status::kOk
              : Status::kInvalidArgument;
 }
 
-bool LookAcrossParams::valid() const {
+Status LookAcrossParams::validate() const {
   auto in_range = [](float s) { return std::isfinite(s) && s >= 0.0f && s <= 600.0f; };
-  return in_range(after_s) && in_range(release_s);
+  return in_range(after_s) && in_range(release_s) ? Status::kOk : Status::kInvalidArgument;
 }
 
 Status FrontierParams::validate() const {

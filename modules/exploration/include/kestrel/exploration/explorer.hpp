@@ -44,7 +44,7 @@ struct ExplorerStatus {
   FieldResult field;                               // wall-following field of the last scan (blend, wallfollow)
   Eigen::Vector2f v_wf = Eigen::Vector2f::Zero();  // world frame, m/s, before the speed limit
   Eigen::Vector2f v_fr = Eigen::Vector2f::Zero();  // world frame, m/s (blend)
-  float heading_target_rad = 0;                    // before the yaw-rate limit
+  float heading_target_rad = 0;                    // before the yaw-rate limit (across, when looking_across)
   bool looking_across = false;                     // the heading is across a degenerate match's axis
   uint32_t look_across_turns = 0;                  // times it turned across (LookAcross), since reset
   ApproachResult approach;                         // the approach limiter on the last command

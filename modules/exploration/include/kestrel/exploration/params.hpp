@@ -177,8 +177,8 @@ struct GuidanceParams {
 struct LookAcrossParams {
   float after_s = 0.0f;    // degenerate this long before turning across (0 = off)
   float release_s = 2.0f;  // and back towards the target once the match has been clear this long
-  // Both finite and within [0, 600] s.
-  bool valid() const;
+  // kInvalidArgument unless both are finite and within [0, 600] s.
+  Status validate() const;
 };
 
 // The approach limiter (approach_limiter.hpp): the velocity-commanding explorers (blend,
