@@ -44,6 +44,23 @@ TEST(Collision, TouchingCountsAndANearMissDoesNot) {
   EXPECT_TRUE(f.checker.check(at(2, 5.05 + 0.27 - 0.01, 1), c));
 }
 
+TEST(Collision, TheCeilingIsAContactAndTheOpenSkyIsNot) {
+  // Ceiling at 2.6 m: the body's top (0.06 m above its centre when level) meets it at 2.54 m;
+  // tilted, its rim rises (0.27 m * sin 0.3 = 8 cm).
+  Fixture f("start 0 0 1 0\nceiling 2.6\nwall 2 -5 2 5\n");
+  Contact c;
+  EXPECT_FALSE(f.checker.check(at(0, 0, 2.5), c));
+  EXPECT_TRUE(f.checker.check(at(0, 0, 2.55), c));
+  EXPECT_EQ(c.piece, kCeilingPiece);
+  EXPECT_NEAR(c.position_m.z(), 2.6, 1e-9);
+  EXPECT_NEAR(c.depth_m, 0.01, 1e-6);
+  EXPECT_TRUE(f.checker.check(at(0, 0, 2.5, 0.3), c));
+  EXPECT_TRUE(f.checker.check(at(0, 0, 1e4), c));  // far above: still the ceiling
+  // Without a ceiling (open above) climbing over the walls touches nothing.
+  Fixture open("start 0 0 1 0\nwall 2 -5 2 5\n");
+  EXPECT_FALSE(open.checker.check(at(2, 0, 10), c));
+}
+
 TEST(Collision, InsideAnObstacleCounts) {
   Fixture f("start 0 0 1 0\nbox 5 5 3 3\n");
   Contact c;

@@ -60,7 +60,7 @@ void prism_center(const void* obj, ccd_vec3_t* out) {
 
 CollisionChecker::CollisionChecker(const World& world, const SegmentGrid& grid,
                                    double body_radius_m, double body_height_m)
-    : grid_(grid), radius_(body_radius_m), height_(body_height_m) {
+    : grid_(grid), radius_(body_radius_m), height_(body_height_m), ceiling_m_(world.ceiling_m) {
   for (const Wall& w : world.walls) {
     const std::array<Eigen::Vector2d, 4> box = wall_outline(w, world.wall_thickness_m);
     Prism p;
@@ -105,6 +105,19 @@ bool CollisionChecker::check(const VehicleState& state, Contact& out) {
   const Eigen::Vector2d c(state.position_m.x(), state.position_m.y());
   candidates_.clear();
   if (!c.allFinite()) return false;
+  if (ceiling_m_ > 0 && std::isfinite(state.position_m.z())) {
+    // The cylinder's highest point: its axis tilted by the attitude, its rim raised by the tilt.
+    const double up = std::clamp(state.rotation()(2, 2), -1.0, 1.0);
+    const double top = state.position_m.z() + std::fabs(up) * height_ / 2 + std::sqrt(1 - up * up) * radius_;
+    if (top >= ceiling_m_) {
+      out.stamp = state.stamp;
+      out.position_m = Eigen::Vector3d(c.x(), c.y(), ceiling_m_);
+      out.depth_m = top - ceiling_m_;
+      out.piece = kCeilingPiece;
+      out.line = 0;
+      return true;
+    }
+  }
   const int x0 = std::max(0, grid_.cell_x(c.x() - reach_)), x1 = std::min(grid_.nx() - 1, grid_.cell_x(c.x() + reach_));
   const int y0 = std::max(0, grid_.cell_y(c.y() - reach_)), y1 = std::min(grid_.ny() - 1, grid_.cell_y(c.y() + reach_));
   for (int iy = y0; iy <= y1; ++iy)

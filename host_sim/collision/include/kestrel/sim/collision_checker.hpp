@@ -6,7 +6,9 @@
 // point. Broad phase: a uniform grid (the ray caster's cells) listing every piece whose
 // bounding box overlaps a cell, footprint interiors included, queried with the cylinder's
 // bounding box, so only pieces near the vehicle are tested. The floor is not a contact
-// (the vehicle lands on it).
+// (the vehicle lands on it); a world's ceiling is (piece kCeilingPiece): a vehicle whose
+// height estimate runs away climbs into it, where without it it would fly out over the walls
+// unseen and untouched.
 #include <Eigen/Core>
 #include <vector>
 
@@ -21,9 +23,11 @@ struct Contact {
   TimeUs stamp;
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // a point of the overlap, world frame
   double depth_m = 0;                                    // penetration depth
-  int piece = -1;    // World piece: walls 0..W-1, then obstacles
-  int line = 0;      // the piece's line in the world source
+  int piece = -1;    // World piece: walls 0..W-1, then obstacles; kCeilingPiece
+  int line = 0;      // the piece's line in the world source (0 for the ceiling)
 };
+
+inline constexpr int kCeilingPiece = -2;
 
 class CollisionChecker {
  public:
@@ -44,6 +48,7 @@ class CollisionChecker {
   const SegmentGrid& grid_;
   std::vector<Prism> pieces_;
   double radius_, height_, reach_;
+  double ceiling_m_ = 0;  // World::ceiling_m: 0, none
   std::vector<uint32_t> cell_start_;  // compressed rows: pieces per grid cell
   std::vector<int> cell_pieces_;
   std::vector<uint32_t> seen_pieces_;
