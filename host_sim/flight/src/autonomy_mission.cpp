@@ -520,8 +520,8 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("scans_lost", c.scans_lost);
   out.emplace_back("map_restarts", c.map_restarts);
   // The compact SLAM's own counts (all zero when it is off): scans it matched or drew, the
-  // corrections it handed to the filter, the scans drawn and those draw_min_curvature kept out (nav.corrections and nav.corrections_rejected say what
-  // the filter made of them).
+  // corrections it handed to the filter (nav.corrections and nav.corrections_rejected say what
+  // the filter made of them), the scans drawn and those draw_min_curvature kept out.
   out.emplace_back("slam_scans", stack_->slam().counters().scans);
   out.emplace_back("slam_corrections", stack_->slam().counters().corrections);
   out.emplace_back("slam_drawn", stack_->slam().counters().drawn);
