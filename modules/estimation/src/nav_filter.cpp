@@ -13,6 +13,15 @@ namespace {
 bool finite3(const Eigen::Vector3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 bool within(const Eigen::Vector3f& v, float limit) { return v.cwiseAbs().maxCoeff() <= limit; }
 
+// Sets the height to a reading outright: its variance is the reading's, uncorrelated with the
+// velocity and bias, which keep their estimates. `delta` is the reading's offset from the slot.
+void set_height(AxisState& a, float height, float variance, float delta) {
+  a.x(0) = height - delta * a.x(1);
+  a.P.row(0).setZero();
+  a.P.col(0).setZero();
+  a.P(0, 0) = variance;
+}
+
 }  // namespace
 
 NavFilter::NavFilter(const EkfParams& params) : params_(params) {}
@@ -134,6 +143,7 @@ void NavFilter::propagate(const Filters& from, Filters& to, const Input& in, flo
   axis_predict(to.ax[2], u.z(), dt, qz, 0.0f);
   to.accel_world = u - Eigen::Vector3f(to.ax[0].x(2), to.ax[1].x(2), to.ax[2].x(2));
   to.yaw_rate = in.gyro_z - to.hd.x(1);
+  if (to.heights_rejected > 0) to.rejected_run_s += dt;
 }
 
 Status NavFilter::predict(const ImuSample& imu) {
@@ -488,20 +498,46 @@ Status NavFilter::apply_pose(Filters& f, const Entry& e, float delta, bool count
 Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool count) {
   if (!f.height_known) {
     // The first height sets the vertical position outright (no gate: nothing to compare with).
-    AxisState& a = f.ax[2];
-    a.x(0) = e.z(0) - delta * a.x(1);
-    a.P.row(0).setZero();
-    a.P.col(0).setZero();
-    a.P(0, 0) = e.R(0, 0);
+    set_height(f.ax[2], e.z(0) + f.floor_m, e.R(0, 0), delta);
     f.height_known = true;
     if (count) ++counters_.altitude_updates;
     return Status::kOk;
   }
-  const ScalarInnovation iz = axis_position_innovation(f.ax[2], e.z(0), e.R(0, 0), delta);
+  ScalarInnovation iz = axis_position_innovation(f.ax[2], e.z(0) + f.floor_m, e.R(0, 0), delta);
   if (!(iz.s > 0.0f) || !(iz.nu * iz.nu <= params_.altitude_gate_chi2 * iz.s)) {
-    if (count) ++counters_.altitude_rejected;
-    return Status::kRejected;
+    // A run is a sequence of readings that moves smoothly against the estimate; a jump
+    // within it (a beam at a box's edge, an outlier) starts a new one from that reading.
+    if (f.heights_rejected == 0 || !(std::fabs(iz.nu - f.run_last_nu) <= params_.altitude_step_tol_m)) {
+      f.heights_rejected = 0;
+      f.rejected_run_s = 0;
+      f.run_first_nu = iz.nu;
+    }
+    f.run_last_nu = iz.nu;
+    if (f.heights_rejected < UINT8_MAX) ++f.heights_rejected;
+    const bool decided = params_.altitude_relock_s > 0.0f && f.heights_rejected >= kRelockMinRejected &&
+                         f.rejected_run_s >= params_.altitude_relock_s && iz.s > 0.0f && std::isfinite(iz.nu);
+    if (!decided) {
+      if (count) ++counters_.altitude_rejected;
+      return Status::kRejected;
+    }
+    f.heights_rejected = 0;
+    if (!(std::fabs(iz.nu - f.run_first_nu) <= params_.altitude_step_tol_m)) {
+      // The disagreement grew over the run: the estimate, not the floor, moved. The vertical
+      // velocity that carried it away is suspect too, so it is loosened as well.
+      set_height(f.ax[2], e.z(0) + f.floor_m, e.R(0, 0), delta);
+      f.ax[2].P(1, 1) += params_.altitude_relock_vel_var;
+      if (count) ++counters_.altitude_relocks;
+      return Status::kOk;
+    }
+    // Every reading jumped at once and stayed: the floor moved under a vehicle that did not.
+    // Back within the tolerance of the take-off floor it snaps to it, so that the steps'
+    // small errors do not add up over a flight of boxes crossed and left.
+    f.floor_m -= iz.nu;
+    if (std::fabs(f.floor_m) <= params_.altitude_step_tol_m) f.floor_m = 0;
+    iz = axis_position_innovation(f.ax[2], e.z(0) + f.floor_m, e.R(0, 0), delta);
+    if (count) ++counters_.floor_steps;
   }
+  f.heights_rejected = 0;
   axis_position_update(f.ax[2], iz, delta);
   if (count) ++counters_.altitude_updates;
   return Status::kOk;

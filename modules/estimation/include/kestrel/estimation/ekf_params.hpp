@@ -40,13 +40,23 @@ struct EkfParams {
   float pose_gate_chi2 = 16.27f;    // 1: 3 dof (x, y, heading), 99.9 %
   float altitude_gate_chi2 = 10.83f;// 1: 1 dof, 99.9 %
   float max_correction_m = 10.0f;   // m: larger SLAM corrections are rejected
+  // A run of rejected heights: the altimeter measures the height above whatever is below, so a
+  // run (readings rejected in a row, none further than altitude_step_tol_m from the one before)
+  // that lasts altitude_relock_s and kRelockMinRejected readings is decided. If the readings
+  // jumped together and stayed (the last within altitude_step_tol_m of the first), the floor
+  // moved (a box, a bench): the floor under the vehicle is placed again and the world height
+  // kept. If the disagreement grew, the estimate moved (a height that left its own gate and
+  // would reject every true reading after it): the height is set from the altimeter again.
+  float altitude_relock_s = 0.4f;       // s: 0 never decides (every such reading stays rejected)
+  float altitude_step_tol_m = 0.1f;     // m: a run's steps between readings; a floor step's spread
+  float altitude_relock_vel_var = 0.25f;// (m/s)^2: added to the vertical velocity's variance at a re-lock
   // Bad input handling.
   float max_imu_gap_s = 0.1f;       // s: a longer IMU gap restarts the history
   float max_future_s = 0.05f;       // s: a measurement may be stamped this far past the newest IMU sample
   float gravity_mps2 = 9.80665f;    // m/s^2
 };
 
-inline constexpr std::size_t kEkfParamCount = 22;
+inline constexpr std::size_t kEkfParamCount = 25;
 std::array<params::ParamField, kEkfParamCount> ekf_param_fields(EkfParams& p);
 Status validate(const EkfParams& p);
 // Loads `path` over the defaults in `out`; on any error `out` is unchanged.

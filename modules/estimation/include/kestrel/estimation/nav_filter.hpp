@@ -48,7 +48,8 @@
 //
 // Bad inputs: non-finite samples (kNotFinite), IMU time going backwards (kTimeJump, sample
 // dropped), an IMU gap above max_imu_gap_s (kTimeJump: coasts at constant velocity over the
-// gap and restarts the history), gated measurements (kRejected). Each is counted. Finite but
+// gap and restarts the history), gated measurements (kRejected; a lasting run of gated heights
+// is decided as a floor step or a height re-lock, see EkfParams). Each is counted. Finite but
 // physically impossible values are refused with kOutOfRange and counted too: an IMU component
 // beyond kMaxAccelMps2 or kMaxGyroRadps (a float that size would overflow P), a pose x or y
 // or an altimeter height beyond kMaxNavCoordinateM (messages.hpp); set_attitude ignores a
@@ -95,6 +96,8 @@ struct NavFilterCounters {
   uint32_t pose_rejected = 0;        // gated out (outliers)
   uint32_t altitude_updates = 0;
   uint32_t altitude_rejected = 0;
+  uint32_t altitude_relocks = 0;     // heights set from the altimeter after a run of rejections
+  uint32_t floor_steps = 0;          // runs of rejections taken as a step of the floor
   uint32_t at_rest_updates = 0;
   uint32_t corrections = 0;
   uint32_t corrections_rejected = 0;
@@ -114,7 +117,7 @@ struct NavFilterCounterField {
   const char* name;
   uint32_t NavFilterCounters::*member;
 };
-inline constexpr std::array<NavFilterCounterField, 20> kNavFilterCounterFields{{
+inline constexpr std::array<NavFilterCounterField, 22> kNavFilterCounterFields{{
     {"imu_samples", &NavFilterCounters::imu_samples},
     {"imu_not_finite", &NavFilterCounters::imu_not_finite},
     {"imu_out_of_range", &NavFilterCounters::imu_out_of_range},
@@ -125,6 +128,8 @@ inline constexpr std::array<NavFilterCounterField, 20> kNavFilterCounterFields{{
     {"pose_rejected", &NavFilterCounters::pose_rejected},
     {"altitude_updates", &NavFilterCounters::altitude_updates},
     {"altitude_rejected", &NavFilterCounters::altitude_rejected},
+    {"altitude_relocks", &NavFilterCounters::altitude_relocks},
+    {"floor_steps", &NavFilterCounters::floor_steps},
     {"at_rest_updates", &NavFilterCounters::at_rest_updates},
     {"corrections", &NavFilterCounters::corrections},
     {"corrections_rejected", &NavFilterCounters::corrections_rejected},
@@ -143,6 +148,9 @@ class NavFilter {
  public:
   static constexpr std::size_t kHistory = 1024;
   static constexpr std::size_t kMeasurementLog = 512;
+  // Fewest gated heights in a run before altitude_relock_s decides it: one stray reading
+  // across a long gap between altimeter samples is not a run.
+  static constexpr uint8_t kRelockMinRejected = 5;
   // Plausibility bounds of the inputs (far beyond any sensor's range or indoor flight).
   static constexpr float kMaxAccelMps2 = 1000.0f;  // about 100 g
   static constexpr float kMaxGyroRadps = 100.0f;
@@ -176,7 +184,17 @@ class NavFilter {
     HeadingState hd;
     Eigen::Vector3f accel_world = Eigen::Vector3f::Zero();  // last input minus bias, m/s^2
     float yaw_rate = 0;                                     // last gyro minus bias, rad/s
-    bool height_known = false;  // false until the first altimeter sample
+    // Where the altimeter's floor is, above the take-off floor: a height reading is
+    // height_m + floor_m in the world. Kept in the replayed state, as is the run of gated
+    // heights that moves it, so a replay through a late measurement decides the run the same
+    // way. The run's length is the IMU time propagated since its first height (a float per
+    // slot instead of a stamp).
+    float floor_m = 0;
+    float rejected_run_s = 0;
+    float run_first_nu = 0;        // the run's first rejected height's innovation, m
+    float run_last_nu = 0;         // and its latest
+    uint8_t heights_rejected = 0;  // in a row, saturating
+    bool height_known = false;     // false until the first altimeter sample
   };
   struct Input {
     Eigen::Vector3f accel = Eigen::Vector3f::Zero();  // body specific force of the sample

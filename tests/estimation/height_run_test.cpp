@@ -1,0 +1,218 @@
+// Runs of rejected heights (EkfParams::altitude_relock_s): a run that jumped at once and stayed
+// is a step of the floor (the world height kept, the floor placed again); a run whose
+// disagreement grew is the estimate's (the height re-locked on the altimeter). Regression: a
+// simulated flight's estimate drifted past the gate over a 0.45 m bench, rejected every
+// reading after it (89 in a row) and the controller climbed through the ceiling.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include "kestrel/estimation/nav_filter.hpp"
+
+namespace kestrel::estimation {
+namespace {
+
+constexpr int64_t kImuPeriodUs = 5000;  // 200 Hz
+constexpr int kImuPerHeight = 4;        // 50 Hz altimeter
+
+ImuSample level_at_rest(TimeUs stamp) {
+  ImuSample imu;
+  imu.accel_mps2 = Eigen::Vector3f(0, 0, 9.80665f);
+  imu.stamp = stamp;
+  return imu;
+}
+
+// A hovering vehicle: one pose to start, IMU at rest, a height reading every kImuPerHeight
+// steps from `height(t_s)`; returns the status of each reading in order.
+class Hover {
+ public:
+  explicit Hover(const EkfParams& p = EkfParams{}) : filter_(std::make_unique<NavFilter>(p)) {
+    PoseMeasurement2 pm;
+    pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+    EXPECT_EQ(filter_->update_pose(pm), Status::kOk);
+  }
+  static constexpr float kNoReading = -1.0f;
+  // Flies `seconds` more; `height` maps the time of a reading to its value (or kNoReading).
+  template <typename HeightOf>
+  std::vector<Status> fly(double seconds, HeightOf height) {
+    std::vector<Status> out;
+    const int steps = static_cast<int>(seconds * 1e6 / kImuPeriodUs + 0.5);
+    for (int i = 0; i < steps; ++i) {
+      ++step_;
+      const TimeUs t = TimeUs::from_us(kImuPeriodUs * step_);
+      EXPECT_EQ(filter_->predict(level_at_rest(t)), Status::kOk);
+      if (step_ % kImuPerHeight != 0) continue;
+      const float h = height(t.seconds());
+      if (h != kNoReading) out.push_back(filter_->update_altitude({t, h, 1e-4f}));
+    }
+    return out;
+  }
+  NavFilter& filter() { return *filter_; }
+
+ private:
+  std::unique_ptr<NavFilter> filter_;
+  int64_t step_ = 0;
+};
+
+int count(const std::vector<Status>& v, Status s) { return static_cast<int>(std::count(v.begin(), v.end(), s)); }
+
+// Flies 0.02 s at a time until a reading is taken (or `limit` readings); the statuses in order.
+template <typename HeightOf>
+std::vector<Status> fly_until_taken(Hover& hover, HeightOf height, std::size_t limit = 40) {
+  std::vector<Status> out;
+  while (out.size() < limit && (out.empty() || out.back() != Status::kOk)) out.push_back(hover.fly(0.02, height).at(0));
+  return out;
+}
+
+// 50 Hz readings, the first 0.02 s after the change: the run reaches 0.4 s at the 21st (the
+// 22nd if the summed 5 ms steps round below it), and every reading before it is rejected.
+void expect_decided_after_its_time(const std::vector<Status>& run) {
+  ASSERT_EQ(run.back(), Status::kOk);
+  const auto decided_at = static_cast<int>(run.size()) - 1;
+  EXPECT_GE(decided_at, 20);
+  EXPECT_LE(decided_at, 21);
+  EXPECT_EQ(count(run, Status::kRejected), decided_at);
+}
+
+// GIVEN a height held at 1 m, WHEN a 0.45 m bench comes under the vehicle and stays, THEN the
+// readings are rejected for altitude_relock_s, the run is taken as a floor step (the height
+// stays 1 m, the altimeter's floor is placed 0.45 m up) and the readings after it are taken;
+// WHEN the bench is left, THEN the floor steps back to exactly the take-off floor.
+TEST(HeightRun, ASteadyStepIsTheFloorAndTheHeightIsKept) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  ASSERT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-3f);
+  expect_decided_after_its_time(fly_until_taken(hover, [](double) { return 0.55f; }));
+  const NavFilterCounters& c = hover.filter().counters();
+  EXPECT_EQ(c.floor_steps, 1u);
+  EXPECT_EQ(c.altitude_relocks, 0u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+  std::vector<Status> on_bench = hover.fly(1.0, [](double) { return 0.55f; });
+  EXPECT_EQ(count(on_bench, Status::kOk), static_cast<int>(on_bench.size()));
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+  // Off the bench, 2 cm of the steps' error: snapped back to the take-off floor.
+  expect_decided_after_its_time(fly_until_taken(hover, [](double) { return 1.02f; }));
+  EXPECT_EQ(c.floor_steps, 2u);
+  hover.fly(1.0, [](double) { return 1.02f; });
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.02f, 5e-3f);
+  EXPECT_EQ(c.altitude_relocks, 0u);
+}
+
+// GIVEN a height held at 1 m, WHEN the readings jump away and keep moving (the estimate is what
+// stays behind, as in a climb the filter does not see), THEN the run re-locks the height on the
+// altimeter with a loosened vertical velocity, and the readings after it are taken.
+TEST(HeightRun, AGrowingDisagreementRelocksOnTheAltimeter) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  const float velocity_var_before = hover.filter().axis(2).P(1, 1);
+  const double t0 = 1.0;
+  auto climbing = [t0](double t) { return static_cast<float>(1.6 + 0.5 * (t - t0)); };
+  expect_decided_after_its_time(fly_until_taken(hover, climbing));
+  const NavFilterCounters& c = hover.filter().counters();
+  EXPECT_EQ(c.altitude_relocks, 1u);
+  EXPECT_EQ(c.floor_steps, 0u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), climbing(hover.filter().state().stamp.seconds()), 1e-2f);
+  EXPECT_NEAR(hover.filter().axis(2).P(0, 0), 1e-4f, 1e-5f);
+  EXPECT_GT(hover.filter().axis(2).P(1, 1), velocity_var_before + 0.2f);
+}
+
+// GIVEN readings that alternate between the true height and a far outlier, THEN the run never
+// lasts: every outlier is rejected, the height stays, nothing is decided.
+TEST(HeightRun, AlternatingOutliersAreNeverARun) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  int n = 0;
+  const std::vector<Status> s = hover.fly(3.0, [&n](double) { return ++n % 2 == 0 ? 1.6f : 1.0f; });
+  EXPECT_EQ(count(s, Status::kRejected), static_cast<int>(s.size()) / 2);
+  EXPECT_EQ(hover.filter().counters().altitude_relocks + hover.filter().counters().floor_steps, 0u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+}
+
+// GIVEN readings that are all rejected but jump between two levels (a box's edge, where the
+// deflected beams meet its top on one scan and its side on the next), THEN no run lasts: each
+// jump starts a new one, nothing is decided and the height is kept.
+TEST(HeightRun, ReadingsJumpingWithinARunAreNeverDecided) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  int n = 0;
+  const std::vector<Status> s = hover.fly(1.0, [&n](double) { return ++n % 2 == 0 ? 0.3f : 0.55f; });
+  EXPECT_EQ(count(s, Status::kRejected), static_cast<int>(s.size()));
+  EXPECT_EQ(hover.filter().counters().altitude_relocks + hover.filter().counters().floor_steps, 0u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 2e-2f);
+}
+
+// GIVEN altitude_relock_s = 0, THEN a step is rejected until the height's own variance has
+// grown to take it (here longer than the 1 s flown): the filter's behaviour before the runs.
+TEST(HeightRun, ZeroSecondsNeverDecides) {
+  EkfParams p;
+  p.altitude_relock_s = 0.0f;
+  Hover hover(p);
+  hover.fly(1.0, [](double) { return 1.0f; });
+  const std::vector<Status> s = hover.fly(1.0, [](double) { return 1.6f; });
+  EXPECT_EQ(count(s, Status::kRejected), static_cast<int>(s.size()));
+  EXPECT_EQ(hover.filter().counters().altitude_relocks + hover.filter().counters().floor_steps, 0u);
+}
+
+// GIVEN readings 0.15 s apart (a slow altimeter) that all disagree, THEN time alone does not
+// decide: the fourth is rejected though the run has lasted 0.45 s, the fifth decides.
+TEST(HeightRun, TimeAloneWithoutEnoughReadingsDoesNotDecide) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  std::vector<Status> s;
+  for (int i = 0; i < 5; ++i) {
+    hover.fly(0.13, [](double) { return Hover::kNoReading; });
+    const std::vector<Status> one = hover.fly(0.02, [](double) { return 1.6f; });
+    s.insert(s.end(), one.begin(), one.end());
+  }
+  ASSERT_EQ(s.size(), 5u);
+  EXPECT_EQ(count(s, Status::kRejected), 4);
+  EXPECT_EQ(s[4], Status::kOk);
+  EXPECT_EQ(hover.filter().counters().floor_steps, 1u);
+}
+
+// GIVEN the same readings, one filter taking a pose late (so it replays through a run of
+// rejected heights and the floor step) and one taking it in order, THEN they end in the same
+// state: the run and the floor are part of the replayed state, not of the counters.
+TEST(HeightRun, ALatePoseReplaysTheRunAsInOrder) {
+  auto in_order = std::make_unique<NavFilter>();
+  auto late = std::make_unique<NavFilter>();
+  PoseMeasurement2 pm;
+  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  ASSERT_EQ(in_order->update_pose(pm), Status::kOk);
+  ASSERT_EQ(late->update_pose(pm), Status::kOk);
+  PoseMeasurement2 moved = pm;
+  moved.pose = Pose2{0.05f, -0.03f, 0.01f};
+  const TimeUs pose_at = TimeUs::from_us(kImuPeriodUs * 150);  // 0.75 s, inside the run
+  for (int64_t i = 1; i <= 400; ++i) {
+    const TimeUs t = TimeUs::from_us(kImuPeriodUs * i);
+    ASSERT_EQ(in_order->predict(level_at_rest(t)), Status::kOk);
+    ASSERT_EQ(late->predict(level_at_rest(t)), Status::kOk);
+    if (i % kImuPerHeight == 0) {
+      const AltimeterSample h{t, i < 100 ? 1.0f : 0.55f, 1e-4f};
+      EXPECT_EQ(in_order->update_altitude(h), late->update_altitude(h)) << "step " << i;
+    }
+    if (t == pose_at) {
+      moved.stamp = t;
+      ASSERT_EQ(in_order->update_pose(moved), Status::kOk);
+    }
+  }
+  ASSERT_EQ(late->update_pose(moved), Status::kOk);  // 1.25 s late: replays the history
+  EXPECT_GT(late->counters().replays, 0u);
+  EXPECT_EQ(in_order->counters().floor_steps, 1u);
+  const NavState a = in_order->state(), b = late->state();
+  EXPECT_NEAR(a.position_m.z(), b.position_m.z(), 1e-5f);
+  EXPECT_NEAR(a.velocity_mps.z(), b.velocity_mps.z(), 1e-5f);
+  EXPECT_NEAR(a.position_m.x(), b.position_m.x(), 1e-4f);
+  EXPECT_NEAR(a.position_m.z(), 1.0f, 1e-2f);
+  // Both read the bench as the floor: the next bench reading is taken by both alike.
+  const TimeUs t = TimeUs::from_us(kImuPeriodUs * 401);
+  ASSERT_EQ(in_order->predict(level_at_rest(t)), Status::kOk);
+  ASSERT_EQ(late->predict(level_at_rest(t)), Status::kOk);
+  EXPECT_EQ(in_order->update_altitude({t, 0.55f, 1e-4f}), Status::kOk);
+  EXPECT_EQ(late->update_altitude({t, 0.55f, 1e-4f}), Status::kOk);
+}
+
+}  // namespace
+}  // namespace kestrel::estimation
