@@ -515,29 +515,37 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     f.run_last_nu = iz.nu;
     if (f.heights_rejected < UINT8_MAX) ++f.heights_rejected;
     const bool decided = params_.altitude_relock_s > 0.0f && f.heights_rejected >= kRelockMinRejected &&
-                         f.rejected_run_s >= params_.altitude_relock_s && iz.s > 0.0f && std::isfinite(iz.nu);
+                         f.rejected_run_s >= params_.altitude_relock_s && std::isfinite(iz.nu);
     if (!decided) {
       if (count) ++counters_.altitude_rejected;
       return Status::kRejected;
     }
     f.heights_rejected = 0;
-    if (!(std::fabs(iz.nu - f.run_first_nu) <= params_.altitude_step_tol_m)) {
-      // The disagreement grew over the run: the estimate, not the floor, moved. The vertical
-      // velocity that carried it away is suspect too, so it is loosened as well.
+    // A floor step jumped: its first reading lay beyond the tolerance from the last one taken
+    // (an estimate creeping out of its gate does not), and it stayed (the last within the
+    // tolerance of the first). Anything else is the estimate's error; so is a run met with no
+    // usable variance, which no update could weigh.
+    const bool jumped = std::fabs(f.run_first_nu - f.last_taken_nu) > params_.altitude_step_tol_m;
+    const bool stayed = std::fabs(iz.nu - f.run_first_nu) <= params_.altitude_step_tol_m;
+    if (!(jumped && stayed && iz.s > 0.0f)) {
+      // The estimate, not the floor, moved. The vertical velocity that carried it away is
+      // suspect too, so it is loosened as well. Counted as a re-lock only, not an update.
       set_height(f.ax[2], e.z(0) + f.floor_m, e.R(0, 0), delta);
       f.ax[2].P(1, 1) += params_.altitude_relock_vel_var;
+      f.last_taken_nu = 0;
       if (count) ++counters_.altitude_relocks;
       return Status::kOk;
     }
-    // Every reading jumped at once and stayed: the floor moved under a vehicle that did not.
-    // Back within the tolerance of the take-off floor it snaps to it, so that the steps'
-    // small errors do not add up over a flight of boxes crossed and left.
+    // The floor moved under a vehicle that did not. Back within the tolerance of the take-off
+    // floor it snaps to it, so that the steps' small errors do not add up over a flight of
+    // boxes crossed and left (the reading then moves the height by at most the tolerance).
     f.floor_m -= iz.nu;
     if (std::fabs(f.floor_m) <= params_.altitude_step_tol_m) f.floor_m = 0;
     iz = axis_position_innovation(f.ax[2], e.z(0) + f.floor_m, e.R(0, 0), delta);
     if (count) ++counters_.floor_steps;
   }
   f.heights_rejected = 0;
+  f.last_taken_nu = iz.nu;
   axis_position_update(f.ax[2], iz, delta);
   if (count) ++counters_.altitude_updates;
   return Status::kOk;

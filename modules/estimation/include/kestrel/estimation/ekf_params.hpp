@@ -43,12 +43,13 @@ struct EkfParams {
   // A run of rejected heights: the altimeter measures the height above whatever is below, so a
   // run (readings rejected in a row, none further than altitude_step_tol_m from the one before)
   // that lasts altitude_relock_s and kRelockMinRejected readings is decided. If the readings
-  // jumped together and stayed (the last within altitude_step_tol_m of the first), the floor
-  // moved (a box, a bench): the floor under the vehicle is placed again and the world height
-  // kept. If the disagreement grew, the estimate moved (a height that left its own gate and
-  // would reject every true reading after it): the height is set from the altimeter again.
-  float altitude_relock_s = 0.4f;       // s: 0 never decides (every such reading stays rejected)
-  float altitude_step_tol_m = 0.1f;     // m: a run's steps between readings; a floor step's spread
+  // jumped (the run's first over altitude_step_tol_m from the last reading taken) and stayed
+  // (its last within altitude_step_tol_m of its first), the floor moved (a box, a bench): the
+  // floor under the vehicle is placed again and the world height kept. Otherwise the estimate
+  // moved (a height that crept out of its own gate and would refuse every true reading after
+  // it): the height is set from the altimeter again.
+  float altitude_relock_s = 0.4f;       // s: 0 never decides (a run stays rejected until the gate widens)
+  float altitude_step_tol_m = 0.1f;     // m: a run's steps between readings; a floor step's jump and spread
   float altitude_relock_vel_var = 0.25f;// (m/s)^2: added to the vertical velocity's variance at a re-lock
   // Bad input handling.
   float max_imu_gap_s = 0.1f;       // s: a longer IMU gap restarts the history

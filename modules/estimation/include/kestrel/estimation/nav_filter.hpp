@@ -19,7 +19,7 @@
 //
 // Timing. predict() runs once per IMU sample: it is the fixed clock. Each step stores the
 // input and the predicted (prior) state and covariance in a ring of kHistory slots
-// (1024: 5.1 s at 200 Hz, 10.2 s at 100 Hz; about 200 kB). Every measurement is logged
+// (1024: 5.1 s at 200 Hz, 10.2 s at 100 Hz; about 240 kB). Every measurement is logged
 // (kMeasurementLog entries, sorted by stamp) and applied at the time it was taken: the filter
 // restarts from the prior of the slot at or before its stamp, applies the logged
 // measurements of that slot in stamp order (each with H extrapolated over the few
@@ -193,6 +193,7 @@ class NavFilter {
     float rejected_run_s = 0;
     float run_first_nu = 0;        // the run's first rejected height's innovation, m
     float run_last_nu = 0;         // and its latest
+    float last_taken_nu = 0;       // the innovation of the last height taken, m
     uint8_t heights_rejected = 0;  // in a row, saturating
     bool height_known = false;     // false until the first altimeter sample
   };
