@@ -26,9 +26,16 @@ ImuSample level_at_rest(TimeUs stamp) {
 
 // A hovering vehicle: one pose to start, IMU at rest, a height reading every kImuPerHeight
 // steps from `height(t_s)`; returns the status of each reading in order.
+// The runs as flown (altitude_relock_s is off by default).
+EkfParams runs_on() {
+  EkfParams p;
+  p.altitude_relock_s = 0.4f;
+  return p;
+}
+
 class Hover {
  public:
-  explicit Hover(const EkfParams& p = EkfParams{}) : filter_(std::make_unique<NavFilter>(p)) {
+  explicit Hover(const EkfParams& p = runs_on()) : filter_(std::make_unique<NavFilter>(p)) {
     PoseMeasurement2 pm;
     pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
     EXPECT_EQ(filter_->update_pose(pm), Status::kOk);
@@ -147,7 +154,7 @@ TEST(HeightRun, ReadingsJumpingWithinARunAreNeverDecided) {
 // grown to take it (here longer than the 1 s flown): the filter's behaviour before the runs.
 TEST(HeightRun, ZeroSecondsNeverDecides) {
   EkfParams p;
-  p.altitude_relock_s = 0.0f;
+  EXPECT_EQ(p.altitude_relock_s, 0.0f);  // the default
   Hover hover(p);
   hover.fly(1.0, [](double) { return 1.0f; });
   const std::vector<Status> s = hover.fly(1.0, [](double) { return 1.6f; });
@@ -176,7 +183,7 @@ TEST(HeightRun, TimeAloneWithoutEnoughReadingsDoesNotDecide) {
 // allowed for) over a floor it holds at 1 m, WHEN its height creeps out of its own gate, THEN
 // the run that follows did not jump and is the estimate's: re-locked, never taken as a floor.
 TEST(HeightRun, AnEstimateCreepingOutOfItsGateIsRelockedNotAFloor) {
-  EkfParams p;
+  EkfParams p = runs_on();
   p.accel_noise_z = 1e-9f;
   p.accel_bias_walk = 1e-14f;
   p.init_accel_bias_var = 1e-10f;
@@ -206,8 +213,8 @@ TEST(HeightRun, AnEstimateCreepingOutOfItsGateIsRelockedNotAFloor) {
 // through the run and re-locks at the same reading: the same height, velocity and covariance.
 // A run kept outside the replayed state would restart on the replay and re-lock later or never.
 TEST(HeightRun, ALateReadingReplaysTheRunAsInOrder) {
-  auto in_order = std::make_unique<NavFilter>();
-  auto late = std::make_unique<NavFilter>();
+  auto in_order = std::make_unique<NavFilter>(runs_on());
+  auto late = std::make_unique<NavFilter>(runs_on());
   PoseMeasurement2 pm;
   pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
   ASSERT_EQ(in_order->update_pose(pm), Status::kOk);
