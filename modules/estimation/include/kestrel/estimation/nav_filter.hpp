@@ -19,7 +19,7 @@
 //
 // Timing. predict() runs once per IMU sample: it is the fixed clock. Each step stores the
 // input and the predicted (prior) state and covariance in a ring of kHistory slots
-// (1024: 5.1 s at 200 Hz, 10.2 s at 100 Hz; about 240 kB). Every measurement is logged
+// (1024: 5.1 s at 200 Hz, 10.2 s at 100 Hz; 256 KiB). Every measurement is logged
 // (kMeasurementLog entries, sorted by stamp) and applied at the time it was taken: the filter
 // restarts from the prior of the slot at or before its stamp, applies the logged
 // measurements of that slot in stamp order (each with H extrapolated over the few
