@@ -50,18 +50,26 @@ class Hover {
     for (int i = 0; i < steps; ++i) {
       ++step_;
       const TimeUs t = TimeUs::from_us(kImuPeriodUs * step_);
-      EXPECT_EQ(filter_->predict(level_at_rest(t)), Status::kOk);
+      EXPECT_EQ(filter_->predict(level_at_rest(t)), imu_dropped_ ? Status::kTimeJump : Status::kOk);
+      imu_dropped_ = false;
       if (step_ % kImuPerHeight != 0) continue;
       const float h = height(t.seconds());
       if (h != kNoReading) out.push_back(filter_->update_altitude({t, h, 1e-4f}));
     }
     return out;
   }
+  // No IMU sample (nor reading) for `seconds`, longer than max_imu_gap_s: the filter coasts
+  // over the gap at the next step.
+  void drop_imu(double seconds) {
+    step_ += static_cast<int64_t>(seconds * 1e6 / kImuPeriodUs + 0.5);
+    imu_dropped_ = true;
+  }
   NavFilter& filter() { return *filter_; }
 
  private:
   std::unique_ptr<NavFilter> filter_;
   int64_t step_ = 0;
+  bool imu_dropped_ = false;
 };
 
 int count(const std::vector<Status>& v, Status s) { return static_cast<int>(std::count(v.begin(), v.end(), s)); }
@@ -178,6 +186,25 @@ TEST(HeightRun, TimeAloneWithoutEnoughReadingsDoesNotDecide) {
   EXPECT_EQ(count(s, Status::kRejected), 4);
   EXPECT_EQ(s[4], Status::kOk);
   EXPECT_EQ(hover.filter().counters().floor_steps, 1u);
+}
+
+// GIVEN a bench under the vehicle for 0.2 s of rejected readings, WHEN the IMU then drops out
+// for 0.3 s and the bench is still there after it, THEN the gap counts towards the run's time:
+// the first reading after it decides the floor step (a run that ignored the gap would reject
+// 0.2 s more of them).
+TEST(HeightRun, AnImuGapCountsTowardsTheRunsTime) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  const std::vector<Status> before = hover.fly(0.2, [](double) { return 0.55f; });
+  ASSERT_EQ(before.size(), 10u);
+  EXPECT_EQ(count(before, Status::kRejected), 10);
+  hover.drop_imu(0.3);
+  const std::vector<Status> after = hover.fly(0.02, [](double) { return 0.55f; });
+  ASSERT_EQ(after.size(), 1u);
+  EXPECT_EQ(after[0], Status::kOk);
+  EXPECT_EQ(hover.filter().counters().imu_gaps, 1u);
+  EXPECT_EQ(hover.filter().counters().floor_steps, 1u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 2e-2f);
 }
 
 // GIVEN a filter sure of a wrong accelerometer (an unmodelled 0.3 m/s^2 bias, no bias or noise

@@ -42,9 +42,10 @@ struct EkfParams {
   float max_correction_m = 10.0f;   // m: larger SLAM corrections are rejected
   // A run of rejected heights: the altimeter measures the height above whatever is below, so a
   // run (readings rejected in a row, none further than altitude_step_tol_m from the one before)
-  // that lasts altitude_relock_s and kRelockMinRejected readings is decided. If the readings
-  // jumped (the run's first over altitude_step_tol_m from the last reading taken) and stayed
-  // (its last within altitude_step_tol_m of its first), the floor moved (a box, a bench): the
+  // that lasts altitude_relock_s (IMU gaps included) and kRelockMinRejected readings is decided.
+  // If the readings jumped (the run's first innovation over altitude_step_tol_m from that of the
+  // last reading taken: the estimate may have moved between them) and stayed (its last
+  // innovation within altitude_step_tol_m of its first), the floor moved (a box, a bench): the
   // floor under the vehicle is placed again and the world height kept. Otherwise the estimate
   // moved (a height that crept out of its own gate and would refuse every true reading after
   // it): the height is set from the altimeter again.
