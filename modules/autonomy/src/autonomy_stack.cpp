@@ -1,4 +1,5 @@
 #include "kestrel/autonomy/autonomy_stack.hpp"
+#include "kestrel/autonomy/match_constraint.hpp"
 
 namespace kestrel::autonomy {
 
@@ -281,11 +282,7 @@ void AutonomyStack::scan_task(TimeUs now) {
   if (config_.slam_enabled) offer_scan_to_slam();
   offer_scan_to_home_fix();
   guidance_scan_ = scan_;
-  guidance_match_.stamp = scan_.stamp;
-  guidance_match_.degenerate = (last_match_.measurement.flags & mf::kDegenerate) != 0;
-  // In the matcher's frame; the heading is commanded in the filter's, turned by the SLAM.
-  guidance_match_.flat_axis_rad = wrap_angle(last_match_.major_axis_rad + filter_.frame_correction().theta);
-  guidance_match_.usable = (last_match_.measurement.flags & mf::kLost) == 0;
+  guidance_match_ = match_constraint_in_nav_frame(last_match_, scan_.stamp, filter_.frame_correction());
   guidance_scan_fresh_ = true;
 }
 
