@@ -205,8 +205,8 @@ Status NavFilter::predict(const ImuSample& imu) {
     heading_predict(cur_.hd, cur_.hd.x(1), dt, params_.gyro_noise, params_.gyro_bias_walk);
     cur_.accel_world.setZero();
     cur_.yaw_rate = 0.0f;
-    // A run of rejected heights lasts in time, not in IMU samples: the readings on either side
-    // of the gap disagreed for all of it.
+    // A run of rejected heights lasts in time, not in IMU samples: it spans the gap when its
+    // readings on either side of it agree.
     if (cur_.heights_rejected > 0) cur_.rejected_run_s += dt;
     first_ = 0;
     count_ = 1;

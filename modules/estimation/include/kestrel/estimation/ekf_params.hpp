@@ -41,7 +41,7 @@ struct EkfParams {
   float altitude_gate_chi2 = 10.83f;// 1: 1 dof, 99.9 %
   float max_correction_m = 10.0f;   // m: larger SLAM corrections are rejected
   // A run of rejected heights: the altimeter measures the height above whatever is below, so a
-  // run (readings rejected in a row, none further than altitude_step_tol_m from the one before)
+  // run (readings rejected in a row, no innovation further than altitude_step_tol_m from the one before)
   // that lasts altitude_relock_s (IMU gaps included) and kRelockMinRejected readings is decided.
   // If the readings jumped (the run's first innovation over altitude_step_tol_m from that of the
   // last reading taken: the estimate may have moved between them) and stayed (its last
