@@ -44,6 +44,16 @@ TEST(ConfigFile, ErrorsNameTheLine) {
   ASSERT_EQ(half.parse("sim.laser_sees_wall_thickness = 0.5\n", "c.cfg"), "");
   SimConfig cfg3;
   EXPECT_EQ(cfg3.apply(half), "sim.laser_sees_wall_thickness must be 0 or 1");
+  ConfigFile tops;
+  ASSERT_EQ(tops.parse("sim.laser_sees_tops_from_above = 2\n", "c.cfg"), "");
+  SimConfig cfg4;
+  EXPECT_EQ(cfg4.apply(tops), "sim.laser_sees_tops_from_above must be 0 or 1");
+  SimConfig cfg5;
+  EXPECT_EQ(cfg5.laser_faces_over_start(), FacesOverStart::kMissed);  // the default the README flew
+  ConfigFile on;
+  ASSERT_EQ(on.load(KESTREL_SOURCE_DIR "/host_sim/sim/configs/tops_from_above.cfg"), "");
+  EXPECT_EQ(cfg5.apply(on), "");
+  EXPECT_EQ(cfg5.laser_faces_over_start(), FacesOverStart::kMet);
   EXPECT_EQ(ConfigFile().load("/nonexistent.cfg"), "cannot open '/nonexistent.cfg'");
 }
 
@@ -60,7 +70,7 @@ TEST(ConfigFile, ShippedExampleHoldsEveryDefault) {
   ASSERT_EQ(cfg.apply(f), "");
   const SimConfig defaults;
   EXPECT_EQ(f.entries().size(),
-            VehicleParams::kBindingCount + LaserParams::kBindingCount + ImuParams::kBindingCount + 5);
+            VehicleParams::kBindingCount + LaserParams::kBindingCount + ImuParams::kBindingCount + 6);  // 6 sim.*
   EXPECT_DOUBLE_EQ(cfg.vehicle.k_thrust, defaults.vehicle.k_thrust);
   EXPECT_DOUBLE_EQ(cfg.vehicle.attitude_tau_s, defaults.vehicle.attitude_tau_s);
   EXPECT_DOUBLE_EQ(cfg.laser.first_angle_rad, defaults.laser.first_angle_rad);

@@ -16,7 +16,8 @@ std::string SimConfig::apply(ConfigFile& file) {
                         {"sim.status_rate_hz", &status_rate_hz},
                         {"sim.truth_history_s", &truth_history_s},
                         {"sim.ray_grid_cell_m", &ray_grid_cell_m},
-                        {"sim.laser_sees_wall_thickness", &laser_sees_wall_thickness}};
+                        {"sim.laser_sees_wall_thickness", &laser_sees_wall_thickness},
+                        {"sim.laser_sees_tops_from_above", &laser_sees_tops_from_above}};
   file.apply(sb, sizeof(sb) / sizeof(sb[0]));
   const std::string unknown = file.unknown_keys();
   if (!unknown.empty()) return unknown;
@@ -33,6 +34,8 @@ std::string SimConfig::validate() const {
   if (!(ray_grid_cell_m >= 0.1 && ray_grid_cell_m <= 10)) return "sim.ray_grid_cell_m must be in [0.1, 10]";
   if (laser_sees_wall_thickness != 0 && laser_sees_wall_thickness != 1)
     return "sim.laser_sees_wall_thickness must be 0 or 1";
+  if (laser_sees_tops_from_above != 0 && laser_sees_tops_from_above != 1)
+    return "sim.laser_sees_tops_from_above must be 0 or 1";
   return "";
 }
 

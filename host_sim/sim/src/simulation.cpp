@@ -24,7 +24,7 @@ Simulation::Simulation(World world, const SimConfig& config)
     : world_(std::move(world)),
       cfg_(config),
       root_rng_(config.seed),
-      caster_(world_, config.ray_grid_cell_m, config.laser_walls()),
+      caster_(world_, config.ray_grid_cell_m, config.laser_walls(), config.laser_faces_over_start()),
       vehicle_(cfg_.vehicle, initial_state(world_), root_rng_.fork(kGustStream)),
       laser_(cfg_.laser, caster_, root_rng_.fork(kLaserStream), &altimeter_),
       imu_(cfg_.imu, root_rng_.fork(kImuStream)),

@@ -1,14 +1,85 @@
 #include "kestrel/sim/ray_caster.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace kestrel::sim {
 
-RayCaster::RayCaster(const World& world, double cell_m, WallSurfaces walls)
-    : grid_(world.segments(walls), cell_m), ceiling_(world.ceiling_m) {
-  for (const Obstacle& o : world.obstacles) polygons_.push_back(o.polygon);
+namespace {
+
+bool returns_from(Material material, double return_probability, Rng* railing_rng) {
+  if (material == Material::kGlass) return false;
+  if (material != Material::kRailing) return true;
+  return railing_rng ? railing_rng->bernoulli(return_probability) : return_probability >= 0.5;
+}
+
+}  // namespace
+
+RayCaster::RayCaster(const World& world, double cell_m, WallSurfaces walls, FacesOverStart faces_over_start)
+    : grid_(world.segments(walls), cell_m), ceiling_(world.ceiling_m), faces_over_start_(faces_over_start) {
+  for (const Obstacle& o : world.obstacles) {
+    Footprint f;
+    f.polygon = o.polygon;
+    f.lo = f.hi = o.polygon.empty() ? Eigen::Vector2d::Zero() : o.polygon.front();
+    for (const Eigen::Vector2d& v : o.polygon) {
+      f.lo = f.lo.cwiseMin(v);
+      f.hi = f.hi.cwiseMax(v);
+    }
+    f.z_min = o.z_min;
+    f.z_max = o.z_max;
+    f.material = o.material;
+    f.return_probability = o.return_probability;
+    footprints_.push_back(std::move(f));
+  }
+  const std::vector<Segment>& segs = grid_.segments();
+  for (std::size_t i = segs.size(); i-- > 0;) {
+    if (segs[i].obstacle >= 0) footprints_[static_cast<std::size_t>(segs[i].obstacle)].segment = static_cast<int>(i);
+  }
+  footprints_by_cell_.resize(static_cast<std::size_t>(grid_.nx()) * static_cast<std::size_t>(grid_.ny()));
+  for (std::size_t k = 0; k < footprints_.size(); ++k) {
+    const Footprint& f = footprints_[k];
+    if (f.polygon.size() < 3) continue;
+    const int x0 = std::max(0, grid_.cell_x(f.lo.x())), x1 = std::min(grid_.nx() - 1, grid_.cell_x(f.hi.x()));
+    const int y0 = std::max(0, grid_.cell_y(f.lo.y())), y1 = std::min(grid_.ny() - 1, grid_.cell_y(f.hi.y()));
+    for (int iy = y0; iy <= y1; ++iy) {
+      for (int ix = x0; ix <= x1; ++ix) {
+        footprints_by_cell_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(grid_.nx()) +
+                            static_cast<std::size_t>(ix)]
+            .push_back(static_cast<uint32_t>(k));
+      }
+    }
+  }
   seen_.assign(grid_.segments().size(), 0);
+}
+
+double RayCaster::face_over_start(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, Rng* railing_rng,
+                                  RayHit& face) const {
+  double best = std::numeric_limits<double>::infinity();
+  if (faces_over_start_ == FacesOverStart::kMissed || dir.z() == 0 || footprints_by_cell_.empty()) return best;
+  const int ix = grid_.cell_x(origin.x()), iy = grid_.cell_y(origin.y());
+  if (!grid_.in_grid(ix, iy)) return best;
+  const Eigen::Vector2d p = origin.head<2>();
+  for (const uint32_t k : footprints_by_cell_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(grid_.nx()) +
+                                              static_cast<std::size_t>(ix)]) {
+    const Footprint& f = footprints_[k];
+    if (p.x() < f.lo.x() || p.x() > f.hi.x() || p.y() < f.lo.y() || p.y() > f.hi.y()) continue;
+    double t = -1;
+    if (dir.z() < 0 && origin.z() > f.z_max) t = (f.z_max - origin.z()) / dir.z();
+    if (dir.z() > 0 && origin.z() < f.z_min) t = (f.z_min - origin.z()) / dir.z();
+    if (!(t > 0) || t >= best || !point_in_polygon(f.polygon, p)) continue;
+    // Over the footprint at the start, and still over it where the beam reaches the face: a
+    // beam that leaves it first passes beside the obstacle.
+    if (!point_in_polygon(f.polygon, (origin + dir * t).head<2>())) continue;
+    if (!returns_from(f.material, f.return_probability, railing_rng)) continue;
+    best = t;
+    face.kind = RayHit::Kind::kSurface;
+    face.range_m = t;
+    face.segment = f.segment;
+    face.material = f.material;
+  }
+  return best;
 }
 
 RayHit RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir_in,
@@ -30,11 +101,22 @@ RayHit RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir
     t_plane = (ceiling_ - z0) / dir.z();
     plane_kind = RayHit::Kind::kCeiling;
   }
+  // A face of the obstacle the beam starts over (or under) is a plane nearer than the floor.
+  RayHit face;
+  const double t_face = face_over_start(origin, dir, railing_rng, face);
+  if (t_face < t_plane) {
+    t_plane = t_face;
+    plane_kind = RayHit::Kind::kSurface;
+  }
   const double t_limit = std::min(max_range_m, t_plane);
   auto finish_plane = [&]() {
     if (plane_kind != RayHit::Kind::kNone && t_plane <= max_range_m) {
       hit.kind = plane_kind;
       hit.range_m = t_plane;
+      if (plane_kind == RayHit::Kind::kSurface) {
+        hit.segment = face.segment;
+        hit.material = face.material;
+      }
     }
     return hit;
   };
@@ -107,23 +189,14 @@ RayHit RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir
         if (z > sg.z_max && slope < 0) s_face = (sg.z_max - z0) / slope;
         if (z < sg.z_min && slope > 0) s_face = (sg.z_min - z0) / slope;
         if (s_face < s || s_face >= best_s || s_face > s_limit) continue;
-        if (!point_in_polygon(polygons_[static_cast<std::size_t>(sg.obstacle)], p + u * s_face)) continue;
-        if (sg.material == Material::kRailing) {
-          const bool returns = railing_rng ? railing_rng->bernoulli(sg.return_probability)
-                                           : sg.return_probability >= 0.5;
-          if (!returns) continue;
-        }
+        if (!point_in_polygon(footprints_[static_cast<std::size_t>(sg.obstacle)].polygon, p + u * s_face)) continue;
+        if (!returns_from(sg.material, sg.return_probability, railing_rng)) continue;
         best_s = s_face;
         hit.segment = static_cast<int>(*it);
         hit.material = sg.material;
         continue;
       }
-      if (sg.material == Material::kGlass) continue;
-      if (sg.material == Material::kRailing) {
-        const bool returns = railing_rng ? railing_rng->bernoulli(sg.return_probability)
-                                         : sg.return_probability >= 0.5;
-        if (!returns) continue;
-      }
+      if (!returns_from(sg.material, sg.return_probability, railing_rng)) continue;
       best_s = s;
       hit.segment = static_cast<int>(*it);
       hit.material = sg.material;

@@ -10,9 +10,10 @@
 // segment's [z_min, z_max]; a beam entering an obstacle's footprint above its top (or below
 // its bottom) hits the top (bottom) face if it crosses that plane inside the footprint;
 // glass lets the beam pass, a railing returns it with its probability; stop once the nearest
-// hit lies inside the current cell. Floor (z = 0) and ceiling returns end the walk early.
-// Limitation: a beam starting above an obstacle's footprint (the vehicle right over a table)
-// does not see that obstacle's top.
+// hit lies inside the current cell. Floor (z = 0) and ceiling returns end the walk early, and
+// so does the top (bottom) face of an obstacle whose footprint the beam starts over (under):
+// the vehicle over a table, whose deflected altimeter beams meet the table top (paper 000);
+// FacesOverStart::kMissed keeps the simulator's older model, in which such a beam missed them.
 #include <cstdint>
 #include <vector>
 
@@ -30,10 +31,17 @@ struct RayHit {
   Material material = Material::kOpaque;
 };
 
+// Whether a beam starting over (under) an obstacle's footprint meets its top (bottom) face
+// (SimConfig::laser_sees_tops_from_above): kMet is the world as it is; kMissed, the model every
+// exploration figure of the README was flown with until it was found (session 56), reads the
+// floor under a vehicle over a table.
+enum class FacesOverStart : uint8_t { kMissed, kMet };
+
 class RayCaster {
  public:
   explicit RayCaster(const World& world, double cell_m = 1.0,
-                     WallSurfaces walls = WallSurfaces::kCentreLines);
+                     WallSurfaces walls = WallSurfaces::kCentreLines,
+                     FacesOverStart faces_over_start = FacesOverStart::kMet);
 
   // `dir` need not be unit length. `railing_rng` decides railing returns; with nullptr a
   // railing returns when its probability is >= 0.5 (deterministic tests and the renderer).
@@ -44,9 +52,26 @@ class RayCaster {
   double ceiling_m() const { return ceiling_; }
 
  private:
+  // A World obstacle's footprint and what a beam meets on its top and bottom faces.
+  struct Footprint {
+    std::vector<Eigen::Vector2d> polygon;
+    Eigen::Vector2d lo, hi;  // the polygon's bounding box
+    double z_min = 0, z_max = 0;
+    Material material = Material::kOpaque;
+    double return_probability = 1;
+    int segment = -1;  // its first edge in grid_.segments(): a face hit's RayHit::segment
+  };
+  // The nearest face met by a beam starting over (under) a footprint and descending (climbing)
+  // to its top (bottom) while still over it, as a 3D length along the unit `dir`; infinity if
+  // none. Fills `face` with the hit (kind kSurface) when there is one.
+  double face_over_start(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, Rng* railing_rng,
+                         RayHit& face) const;
+
   SegmentGrid grid_;
-  std::vector<std::vector<Eigen::Vector2d>> polygons_;  // World::obstacles' footprints
+  std::vector<Footprint> footprints_;                    // World::obstacles, in order
+  std::vector<std::vector<uint32_t>> footprints_by_cell_;  // per grid cell: footprints whose box overlaps it
   double ceiling_;
+  FacesOverStart faces_over_start_;
   std::vector<uint32_t> seen_;
   uint32_t stamp_ = 0;
 };
