@@ -50,7 +50,9 @@ struct EkfParams {
   // moved (a height that crept out of its own gate and would refuse every true reading after
   // it): the height is set from the altimeter again.
   // Off by default: in the simulator's gt-building it cost 2 of 30 UTM-30LX flights a contact
-  // (README, Not done); 0.4 s is the value flown and tested.
+  // (README, Not done); 0.4 s is the value flown and tested. With obstacle tops seen from above
+  // (the simulator's sim.laser_sees_tops_from_above) it is what keeps the height over furniture.
+  // To become the default with that model (modules/exploration/EXPERIMENTS.md).
   float altitude_relock_s = 0.0f;       // s: 0 never decides (a run stays rejected until the gate widens)
   float altitude_step_tol_m = 0.1f;     // m: a run's steps between readings; a floor step's jump and spread
   float altitude_relock_vel_var = 0.25f;// (m/s)^2: added to the vertical velocity's variance at a re-lock
