@@ -77,6 +77,8 @@ TEST(ConfigFile, ShippedExampleHoldsEveryDefault) {
   EXPECT_DOUBLE_EQ(cfg.laser.deflected_beams, defaults.laser.deflected_beams);
   EXPECT_DOUBLE_EQ(cfg.imu.accel_bias_std, defaults.imu.accel_bias_std);
   EXPECT_DOUBLE_EQ(cfg.command_delay_s, defaults.command_delay_s);
+  EXPECT_EQ(cfg.laser_sees_tops_from_above, defaults.laser_sees_tops_from_above);
+  EXPECT_EQ(cfg.laser_sees_wall_thickness, defaults.laser_sees_wall_thickness);
 }
 
 // The README's experiments pass these with --config: each must load and change what it says.

@@ -123,7 +123,8 @@ TEST(RayCaster, HeightLimitedObstacleIsHitOrMissedByATiltedScan) {
 // desk's top, not the floor; tilted, a beam that leaves the footprint before descending to the
 // top passes beside the desk. Under a hanging cabinet a beam going up meets its bottom.
 TEST(RayCaster, ABeamStartingOverAnObstacleMeetsItsFace) {
-  RayCaster rc(make("start 0 0 1 0\nbox 2.5 0 1 2 z=0:0.75\nbox 6 0 1 1 z=1.4:2.2\nwall 10 -20 10 20\n"));
+  RayCaster rc(make("start 0 0 1 0\nbox 2.5 0 1 2 z=0:0.75\nbox 6 0 1 1 z=1.4:2.2\nwall 10 -20 10 20\n"), 1.0,
+               WallSurfaces::kCentreLines, FacesOverStart::kMet);
   const Eigen::Vector3d down(0, 0, -1);
   const RayHit top = rc.cast({2.5, 0.3, 1.2}, down, 30);
   ASSERT_EQ(top.kind, RayHit::Kind::kSurface);
@@ -166,8 +167,9 @@ TEST(RayCaster, FacesOverStartMissedReadsTheFloorUnderTheVehicle) {
   EXPECT_NEAR(side.range_m, 0.25 / std::sin(q), 1e-9);
 }
 
-TEST(RayCaster, AGlassOrRailedObstacleSeenFromAboveKeepsItsMaterial) {
-  RayCaster rc(make("start 0 0 1 0\nbox 2 0 1 1 z=0:0.8 glass\nbox 5 0 1 1 z=0:0.8 railing=0.3\n"));
+TEST(RayCaster, FromAboveGlassPassesAndARailingReturnsWithItsProbability) {
+  RayCaster rc(make("start 0 0 1 0\nbox 2 0 1 1 z=0:0.8 glass\nbox 5 0 1 1 z=0:0.8 railing=0.3\n"), 1.0,
+               WallSurfaces::kCentreLines, FacesOverStart::kMet);
   EXPECT_EQ(rc.cast({2, 0, 1.2}, Eigen::Vector3d(0, 0, -1), 30).kind, RayHit::Kind::kFloor);
   EXPECT_EQ(rc.cast({5, 0, 1.2}, Eigen::Vector3d(0, 0, -1), 30).kind, RayHit::Kind::kFloor);  // p < 0.5
   Rng rng(5);
@@ -248,7 +250,7 @@ TEST(RayCaster, AgreesWithBruteForceOnRandomRays) {
   for (const auto& [cell, walls] :
        {std::pair{0.5, WallSurfaces::kCentreLines}, std::pair{1.0, WallSurfaces::kCentreLines},
         std::pair{3.0, WallSurfaces::kCentreLines}, std::pair{1.0, WallSurfaces::kBoxOutlines}}) {
-    RayCaster rc(w, cell, walls);
+    RayCaster rc(w, cell, walls, FacesOverStart::kMet);
     Rng rng(99);
     int cast = 0;
     for (int i = 0; i < 3000; ++i) {
@@ -271,6 +273,35 @@ TEST(RayCaster, AgreesWithBruteForceOnRandomRays) {
       }
     }
     EXPECT_GT(cast, 2500);
+    // Starts over each footprint (over or under the obstacle), steep beams: the faces found
+    // from the footprint's own cells, against the oracle's plane crossings.
+    int faces = 0;
+    for (const Obstacle& ob : w.obstacles) {
+      Eigen::Vector2d lo = ob.polygon.front(), hi = lo;
+      for (const Eigen::Vector2d& v : ob.polygon) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+      for (int i = 0; i < 1000; ++i) {
+        const Eigen::Vector3d o(rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y()), rng.uniform(0.1, 2.5));
+        if (!point_in_polygon(ob.polygon, o.head<2>()) || (o.z() >= ob.z_min && o.z() <= ob.z_max)) continue;
+        const double a = rng.uniform(-kPi, kPi), el = rng.uniform(-1.4, 1.4);
+        const Eigen::Vector3d d(std::cos(a) * std::cos(el), std::sin(a) * std::cos(el), std::sin(el));
+        const double want = brute_force(w, rc.grid().segments(), o, d, 30);
+        const RayHit h = rc.cast(o, d, 30);
+        if (want < 0) {
+          EXPECT_EQ(h.kind, RayHit::Kind::kNone);
+          continue;
+        }
+        ASSERT_NE(h.kind, RayHit::Kind::kNone) << i;
+        EXPECT_NEAR(h.range_m, want, 1e-9) << i << " cell " << cell;
+        if (h.kind == RayHit::Kind::kSurface && h.segment >= 0 &&
+            rc.grid().segments()[static_cast<std::size_t>(h.segment)].obstacle >= 0 &&
+            point_in_polygon(ob.polygon, (o + d * h.range_m).head<2>()))
+          ++faces;
+      }
+    }
+    EXPECT_GT(faces, 100);  // 134 with this seed
   }
 }
 

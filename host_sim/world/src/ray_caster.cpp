@@ -57,7 +57,7 @@ RayCaster::RayCaster(const World& world, double cell_m, WallSurfaces walls, Face
 double RayCaster::face_over_start(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, Rng* railing_rng,
                                   RayHit& face) const {
   double best = std::numeric_limits<double>::infinity();
-  if (faces_over_start_ == FacesOverStart::kMissed || dir.z() == 0 || footprints_by_cell_.empty()) return best;
+  if (faces_over_start_ == FacesOverStart::kMissed || dir.z() == 0) return best;
   const int ix = grid_.cell_x(origin.x()), iy = grid_.cell_y(origin.y());
   if (!grid_.in_grid(ix, iy)) return best;
   const Eigen::Vector2d p = origin.head<2>();

@@ -50,7 +50,7 @@ struct EkfParams {
   // moved (a height that crept out of its own gate and would refuse every true reading after
   // it): the height is set from the altimeter again.
   // Off by default: in the simulator's gt-building it cost 2 of 30 UTM-30LX flights a contact
-  // (README, Not done); 0.4 s is the value flown and tested. With obstacle tops seen from above
+  // (modules/exploration/EXPERIMENTS.md, Runs of rejected heights); 0.4 s is the value flown and tested. With obstacle tops seen from above
   // (the simulator's sim.laser_sees_tops_from_above) it is what keeps the height over furniture.
   // To become the default with that model (modules/exploration/EXPERIMENTS.md).
   float altitude_relock_s = 0.0f;       // s: 0 never decides (a run stays rejected until the gate widens)
