@@ -116,6 +116,33 @@ TEST(HeightRun, ASteadyStepIsTheFloorAndTheHeightIsKept) {
   EXPECT_EQ(c.altitude_relocks, 0u);
 }
 
+// GIVEN a vehicle at 1 m over a 0.45 m bench (a floor step taken), WHEN it leaves the bench's
+// edge and the averaged beams ramp back to the floor (a jump of 0.3 m, then steps under the
+// tolerance: no clean jump that stayed), THEN the run is the take-off floor again and the height
+// is kept. Regression: a simulated flight re-locked on the bench's floor, its estimate rose
+// 0.9 m and the controller put it down on the box.
+TEST(HeightRun, ARunEndingOverTheTakeOffFloorIsThatFloorHoweverItRamped) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  (void)fly_until_taken(hover, [](double) { return 0.55f; });
+  const NavFilterCounters& c = hover.filter().counters();
+  ASSERT_EQ(c.floor_steps, 1u);
+  hover.fly(0.5, [](double) { return 0.55f; });
+  const double t0 = hover.filter().state().stamp.seconds();
+  auto ramping = [t0](double t) {
+    constexpr float kEdge[] = {0.85f, 0.9f, 0.95f};  // 0.05 m apart
+    const auto i = static_cast<std::size_t>((t - t0) / 0.02 + 0.5) - 1;
+    return i < 3 ? kEdge[i] : 1.0f;
+  };
+  expect_decided_after_its_time(fly_until_taken(hover, ramping));
+  EXPECT_EQ(c.floor_steps, 2u);
+  EXPECT_EQ(c.altitude_relocks, 0u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+  std::vector<Status> off_bench = hover.fly(1.0, [](double) { return 1.0f; });
+  EXPECT_EQ(count(off_bench, Status::kOk), static_cast<int>(off_bench.size()));
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 5e-3f);
+}
+
 // GIVEN a height held at 1 m, WHEN the readings jump away and keep moving (the estimate is what
 // stays behind, as in a climb the filter does not see), THEN the run re-locks the height on the
 // altimeter with a loosened vertical velocity, and the readings after it are taken.

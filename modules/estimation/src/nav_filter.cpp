@@ -530,7 +530,13 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     // usable variance, which no update could weigh.
     const bool jumped = std::fabs(f.run_first_nu - f.last_taken_nu) > params_.altitude_step_tol_m;
     const bool stayed = std::fabs(iz.nu - f.run_first_nu) <= params_.altitude_step_tol_m;
-    if (!(jumped && stayed && iz.s > 0.0f)) {
+    // Over a raised floor, a run that ends where the take-off floor would put it is that floor
+    // again, however it got there: leaving a box's edge, the averaged deflected beams straddle
+    // it and ramp, which is no clean jump; taken for the estimate's error, the run re-locked the
+    // height on the box's floor (a simulated flight then dropped 0.9 m onto the box).
+    const bool back_over_take_off_floor =
+        f.floor_m != 0.0f && std::fabs(iz.nu - f.floor_m) <= params_.altitude_step_tol_m;
+    if (!((jumped && stayed) || back_over_take_off_floor) || !(iz.s > 0.0f)) {
       // The estimate, not the floor, moved. The vertical velocity that carried it away is
       // suspect too, so it is loosened as well. Counted as a re-lock only, not an update.
       set_height(f.ax[2], e.z(0) + f.floor_m, e.R(0, 0), delta);

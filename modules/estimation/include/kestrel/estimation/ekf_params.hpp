@@ -46,7 +46,9 @@ struct EkfParams {
   // If the readings jumped (the run's first innovation over altitude_step_tol_m from that of the
   // last reading taken: the estimate may have moved between them) and stayed (its last
   // innovation within altitude_step_tol_m of its first), the floor moved (a box, a bench): the
-  // floor under the vehicle is placed again and the world height kept. Otherwise the estimate
+  // floor under the vehicle is placed again and the world height kept. So is a run over a raised
+  // floor that ends within altitude_step_tol_m of where the take-off floor would put it, however
+  // it got there (a box's edge, straddled by the averaged beams, ramps). Otherwise the estimate
   // moved (a height that crept out of its own gate and would refuse every true reading after
   // it): the height is set from the altimeter again.
   // Off by default: in the simulator's gt-building it cost 2 of 30 UTM-30LX flights a contact
