@@ -20,8 +20,12 @@
 //    against the newest scan as it bounds the flight home's, so the vehicle touches down held
 //    off the wall, not on the point it took off from (home is a point of the estimate's frame,
 //    which drifts; in gt-building four landings touched the wall before the bound).
+//  - OverABoxTheAltimeterFoundTheFlightKeepsItsClearance (every preset): a corridor with a
+//    0.9 m box across it, its top seen from above; the set-point rises over it
+//    (autonomy/clearance_guard.hpp), and does not with the guard off.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -56,16 +60,18 @@ struct Flight {
   double nav_corrections = -1;  // its corrections the filter took
   double home_fix_references = -1;  // the home re-localisation's reference scans
   double home_fix_searches = -1;    // ...and its searches on the way home
+  double max_altitude_m = 0;
   Eigen::Vector3d final_truth = Eigen::Vector3d::Zero();
 };
 
 Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool utm30lx, double explore_s,
-               const MissionOptions& extra = {}) {
+               const MissionOptions& extra = {}, bool tops_seen_from_above = false) {
   Flight f;
   EXPECT_TRUE(w.ok) << w.error;
   SimConfig cfg;
   cfg.laser = utm30lx ? LaserParams::utm30lx() : LaserParams::urg04lx();
   cfg.seed = seed;
+  cfg.laser_sees_tops_from_above = tops_seen_from_above ? 1 : 0;
   Simulation sim(w.world, cfg);
   FlightRecorder rec(sim.world(), sim.free_space(), Duration::from_s(seconds));
   sim.set_observer(&rec);
@@ -94,6 +100,7 @@ Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool ut
   f.nav_corrections = metric(*mission, "nav.corrections");
   f.home_fix_references = metric(*mission, "home_fix_references");
   f.home_fix_searches = metric(*mission, "home_fix_searches");
+  f.max_altitude_m = rec.max_altitude_m();
   f.final_truth = sim.truth().position_m;
   return f;
 }
@@ -138,6 +145,50 @@ TEST(ExploreClosedLoop, LandsHeldOffAWallItTookOffBeside) {
     EXPECT_GE(kWallX - f.final_truth.x(), kStopM) << "seed " << seed << ": home was " << kWallX - home.x << " m off";
     EXPECT_NEAR(f.final_truth.y(), home.y, 0.15) << "seed " << seed;
   }
+}
+
+// A dead-end corridor 1.6 m wide with a 0.9 m box across it 4 m from take-off: 0.3 m either
+// side, too narrow for the 0.54 m body, so the flight out and the flight home pass over it, and
+// the laser's plane, above its top, never sees it. A level body at 1.0 m clears it by 4 cm.
+constexpr std::string_view kBoxCorridor = R"(name box-corridor
+start 1.0 0.8 0 0
+wall_height 2.5
+ceiling 2.6
+wall 0 0 9 0
+wall 9 0 9 1.6
+wall 9 1.6 0 1.6
+wall 0 1.6 0 0
+box 5 0.8 1.0 1.0 z=0:0.9
+room corridor 0 0 9 0 9 1.6 0 1.6
+)";
+
+// GIVEN the box's top seen by the altimeter from above and height runs decided after 0.4 s
+// (a floor step: the floor placed on the box), THEN the set-point over it rises to keep 0.25 m
+// (autonomy/clearance_guard.hpp) and the flight touches nothing; with the guard off the same
+// flight stays at 1.0 m. gt-building's flights touched their 0.9 m box with the rim behind
+// them, after the altimeter had found it (modules/exploration/EXPERIMENTS.md).
+TEST(ExploreClosedLoop, OverABoxTheAltimeterFoundTheFlightKeepsItsClearance) {
+  const WorldParseResult world = parse_world(kBoxCorridor, "box-corridor");
+  ASSERT_TRUE(world.ok) << world.error;
+  const std::string ekf = ::testing::TempDir() + "kestrel_box_corridor_runs.ekf";
+  {
+    std::ofstream out(ekf);
+    out << "altitude_relock_s = 0.4\n";
+    ASSERT_TRUE(out.good());
+  }
+  MissionOptions guarded;
+  guarded.values["ekf"] = ekf;
+  const Flight f = explore(world, 90.0, 1, false, 30.0, guarded, true);
+  ASSERT_EQ(f.run.status, Status::kOk) << f.run.message;
+  EXPECT_FALSE(f.run.collided) << f.run.message;
+  EXPECT_GT(f.max_altitude_m, 1.1);
+  EXPECT_TRUE(f.landed);
+  EXPECT_EQ(f.allocs, 0.0);
+  MissionOptions unguarded = guarded;
+  unguarded.values["clearance_m"] = "0";
+  const Flight g = explore(world, 90.0, 1, false, 30.0, unguarded, true);
+  ASSERT_EQ(g.run.status, Status::kOk) << g.run.message;
+  EXPECT_LT(g.max_altitude_m, 1.06);
 }
 
 // Under qemu on overo the same seed flies differently (float rounding in a chaotic closed

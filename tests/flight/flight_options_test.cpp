@@ -56,7 +56,7 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
       options({{"approach", "off"}, {"approach_blind_mps", "0.2"}, {"srt_range_m", "5"}, {"altitude_m", "1.2"},
                {"speed_limit_mps", "0.8"}, {"explorer", "frontier"}, {"frontier_reach_m", "8"},
                {"frontier_relaxed_m", "0.3"}, {"frontier_coastal", "0"}, {"yaw_rate_limit_radps", "0.25"},
-               {"look_across_s", "3"}, {"look_across_release_s", "1.5"}});
+               {"look_across_s", "3"}, {"look_across_release_s", "1.5"}, {"clearance_m", "0.3"}});
   FlightOptions f;
   ASSERT_EQ(parse_flight_options(mission::MissionKind::kExplore, opt, f), "");
   EXPECT_FALSE(f.stack.explorer.approach.enabled);
@@ -71,6 +71,7 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   EXPECT_FLOAT_EQ(f.stack.explorer.guidance.yaw_rate_limit_radps, 0.25f);
   EXPECT_FLOAT_EQ(f.stack.explorer.look_across.after_s, 3.0f);
   EXPECT_FLOAT_EQ(f.stack.explorer.look_across.release_s, 1.5f);
+  EXPECT_FLOAT_EQ(f.stack.clearance.min_clearance_m, 0.3f);
   EXPECT_EQ(f.stack.explorer.validate(), Status::kOk);
   for (const auto& [key, bad] : {std::pair<const char*, const char*>{"approach", "maybe"},
                                  {"approach_blind_mps", "-1"},
@@ -89,7 +90,9 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
                                  {"frontier_relaxed_m", "-0.1"},
                                  {"frontier_coastal", "1.5"},
                                  {"altitude_m", "0.1"},
-                                 {"altitude_m", "high"}}) {
+                                 {"altitude_m", "high"},
+                                 {"clearance_m", "-0.1"},
+                                 {"clearance_m", "4"}}) {
     const sim::MissionOptions b = options({{key, bad}});
     FlightOptions g;
     EXPECT_NE(parse_flight_options(mission::MissionKind::kExplore, b, g), "") << key << "=" << bad;
@@ -100,6 +103,7 @@ TEST(FlightOptions, ExploreKnobsReachTheStackAndBadValuesAreRefused) {
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"altitude_m", "1.5"}, {"approach", "on"}}), h),
             "");
   EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"speed_limit_mps", "0.8"}}), h), "");
+  EXPECT_NE(parse_flight_options(mission::MissionKind::kHover, options({{"clearance_m", "0.3"}}), h), "");
 }
 
 // The explorer's distances from laser returns (modules/exploration/EXPERIMENTS.md, Not done: the same physical margins

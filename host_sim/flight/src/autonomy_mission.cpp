@@ -310,6 +310,11 @@ std::string parse_flight_options(mission::MissionKind kind, const sim::MissionOp
       if (!parse_double(value, d) || d < 0.3 || d > 3.0)
         return "altitude_m: '" + value + "' is not a height in [0.3, 3] m";
       out.stack.mission.takeoff_altitude_m = static_cast<float>(d);
+    } else if (key == "clearance_m" && kind == mission::MissionKind::kExplore) {
+      // The height kept over furniture the altimeter finds (autonomy/clearance_guard.hpp): 0 off.
+      if (!parse_double(value, d) || d < 0 || d > 3)
+        return "clearance_m: '" + value + "' is not a clearance in [0, 3] m";
+      out.stack.clearance.min_clearance_m = static_cast<float>(d);
     } else if (key == "corridor_keys_s") {
       // The scan matcher's degenerate_key_interval_s: off by default (README, Exploration;
       // modules/exploration/EXPERIMENTS.md).

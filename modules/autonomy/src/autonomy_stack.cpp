@@ -46,6 +46,11 @@ Status AutonomyStack::configure(const StackConfig& c) {
     configure_error_ = "home re-localisation parameters";
     return Status::kInvalidArgument;
   }
+  if (validate(c.clearance) != Status::kOk) {
+    configure_error_ = "clearance parameters";
+    return Status::kInvalidArgument;
+  }
+  clearance_ = ClearanceGuard(c.clearance);
   slam_frame_ = {};
   watchdog_.configure(c.sensor_timeouts);
   // The operator's keep-out boxes are the explorer's; the flight home keeps out of them too.
@@ -308,6 +313,10 @@ void AutonomyStack::guidance_task(TimeUs now) {
       return_bound_.apply(now, dev_.laser.geometry().scan_period, newest_scan_, newest_scan_fresh_, nav_, *explorer_,
                           setpoint_) != Status::kOk)
     ++counters_.guidance_rejected;
+  // Exploring and flying home the mission's height is the flight altitude, nobody's target;
+  // a waypoint's height is the operator's, and the mission must still arrive at it.
+  const bool exploring = mission_.phase() == mission::Phase::kExplore || mission_.phase() == mission::Phase::kReturn;
+  clearance_.apply(now, filter_.floor_m(), exploring, setpoint_);
 }
 
 void AutonomyStack::control_task(TimeUs now) {

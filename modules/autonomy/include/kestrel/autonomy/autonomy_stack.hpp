@@ -2,7 +2,7 @@
 // The composition module: the one place that sees the HAL. It wires
 //   Imu -> NavFilter.predict, Altimeter -> NavFilter.update_altitude,
 //   LaserScanner -> ScanMatcher -> NavFilter.update_pose,
-//   (Explorer ->) MissionController -> Controller -> FlightController
+//   (Explorer ->) MissionController (-> ClearanceGuard) -> Controller -> FlightController
 // and runs them as the real-time loop (level 2 of paper 000 Figure 4) on the core Scheduler,
 // with the task table of task_table.hpp. The scan matcher's local-map rebuild is level 3:
 // background_step() runs it, from a background thread on a board or in lockstep after each
@@ -17,6 +17,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "kestrel/autonomy/clearance_guard.hpp"
 #include "kestrel/autonomy/home_fix.hpp"
 #include "kestrel/autonomy/return_velocity_bound.hpp"
 #include "kestrel/autonomy/scan_prior.hpp"
@@ -190,6 +191,7 @@ class AutonomyStack {
   LaserScan newest_scan_;      // the newest scan, matched or not: the flight home's limiter
   bool newest_scan_fresh_ = false;
   ReturnVelocityBound return_bound_;  // the flight home's velocity, bounded on the newest scan
+  ClearanceGuard clearance_;          // the altitude set-point kept clear of what is under it
   SensorWatchdog watchdog_;           // whether the IMU and the laser still talk
   mission::ExplorerOutput explorer_out_;  // the explorer's newest set-point
   scan_matching::ScanMatch last_match_;

@@ -1,6 +1,7 @@
 #pragma once
 // Everything the autonomy stack is configured with, one struct per module (each with its
 // defaults and units inline in its own header), plus what ties them together.
+#include "kestrel/autonomy/clearance_guard.hpp"
 #include "kestrel/autonomy/home_fix.hpp"
 #include "kestrel/autonomy/sensor_watchdog.hpp"
 #include "kestrel/control/controller_params.hpp"
@@ -111,6 +112,8 @@ struct StackConfig {
   SensorTimeouts sensor_timeouts;
   // Home re-localisation against the scans of the first minute, on the way home (home_fix.hpp).
   HomeFixConfig home_fix;
+  // The altitude set-point raised over furniture the altimeter finds (clearance_guard.hpp).
+  ClearanceParams clearance;
 };
 
 }  // namespace kestrel::autonomy

@@ -66,7 +66,7 @@
 //   Status update_at_rest(stamp, variance)   zero velocity: the vehicle rests on the ground
 //   Status apply_correction(PoseMeasurement2) SLAM pose of the vehicle at meas.stamp
 //   NavState state() const             the newest estimate; valid once initialised
-//   counters(), frame_correction(), axis(i), heading(), history_span()
+//   counters(), frame_correction(), axis(i), floor_m(), heading(), history_span()
 //   Conventions: FlightStatus roll and pitch are right-handed rotations about body x
 //   (forward) and body y (left), body to world = Rz(yaw) Ry(pitch) Rx(roll), as the
 //   simulator's autopilot reports them: pitch > 0 is nose down (like AttitudeSetpoint), roll
@@ -175,6 +175,8 @@ class NavFilter {
   const NavFilterCounters& counters() const { return counters_; }
   Pose2 frame_correction() const { return frame_correction_; }
   const AxisState& axis(int i) const { return cur_.ax[static_cast<std::size_t>(i)]; }
+  // Where the altimeter's floor is now, above the take-off floor (0 until a floor step).
+  float floor_m() const { return cur_.floor_m; }
   const HeadingState& heading() const { return cur_.hd; }
   Duration history_span() const;
 

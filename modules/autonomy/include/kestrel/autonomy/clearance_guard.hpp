@@ -1,0 +1,54 @@
+#pragma once
+// Clearance over what the altimeter finds under the vehicle: what AutonomyStack does to the
+// mission's altitude set-point exploring and flying home (not on a waypoint's height, which is
+// the operator's and must be arrived at), on its own so that it can be tested without the loop.
+//
+// Why: the laser sees only its own plane (paper 000 section 3.3), so furniture whose top lies
+// between the body's underside and that plane is invisible until the vehicle is over it, when
+// the altimeter reads its top and the filter places the floor there (EkfParams'
+// altitude_relock_s: a floor step). At 1.0 m over gt-building's 0.9 m box a level body clears
+// the top by 4 cm, which a pitch of a few degrees and a centimetre of height error use up: the
+// simulated flights touched it with the rim behind them, after the altimeter had found it.
+// So a floor that comes within min_clearance_m of the set-point raises the set-point to keep
+// that clearance (by at most max_rise_m: nothing sees the ceiling), and keeps it raised hold_s
+// after the floor falls again, because the body is wider than the altimeter's spot and its rim
+// is still over the box when the spot has left it.
+//
+// It cannot help before the altimeter is over the obstacle: a body rim that meets it first is
+// the operator's flight altitude to choose (mission argument altitude_m).
+//
+// No heap, no exceptions: the rise and when it was last wanted are the only state.
+#include "kestrel/core/messages.hpp"
+#include "kestrel/core/status.hpp"
+#include "kestrel/core/time.hpp"
+
+namespace kestrel::autonomy {
+
+struct ClearanceParams {
+  // The altimeter's height over what is under it, at least; 0 turns the guard off. 0.25 m:
+  // over gt-building's 0.75 m desks a 1.0 m flight is not raised, over its 0.9 m box by 0.15 m.
+  float min_clearance_m = 0.25f;
+  float max_rise_m = 0.5f;  // above the mission's set-point, at most
+  float hold_s = 2.0f;      // the rise stands this long after it was last wanted
+};
+
+Status validate(const ClearanceParams& p);
+
+class ClearanceGuard {
+ public:
+  explicit ClearanceGuard(const ClearanceParams& p = {}) : params_(p) {}
+
+  // One guidance cycle. `floor_m` is the floor under the altimeter above the take-off floor
+  // (NavFilter::floor_m()); `in_flight` says the set-point's height is the flight altitude
+  // (false: taking off, landing, on the ground; the rise is dropped and nothing changes). The
+  // set-point's height, in either mode, is raised by rise_m().
+  void apply(TimeUs now, float floor_m, bool in_flight, GuidanceSetpoint& setpoint);
+  float rise_m() const { return rise_m_; }
+
+ private:
+  ClearanceParams params_;
+  float rise_m_ = 0.0f;
+  TimeUs wanted_at_;  // when the standing rise was last wanted
+};
+
+}  // namespace kestrel::autonomy
