@@ -117,10 +117,11 @@ TEST(HeightRun, ASteadyStepIsTheFloorAndTheHeightIsKept) {
 }
 
 // GIVEN a vehicle at 1 m over a 0.45 m bench (a floor step taken), WHEN it leaves the bench's
-// edge and the averaged beams ramp back to the floor (a jump of 0.3 m, then steps under the
-// tolerance: no clean jump that stayed), THEN the run is the take-off floor again and the height
-// is kept. Regression: a simulated flight re-locked on the bench's floor, its estimate rose
-// 0.9 m and the controller put it down on the box.
+// edge and the readings ramp back to the floor (a tilted beam meets the bench's side face: a
+// jump of 0.3 m, then steps under the tolerance, no clean jump that stayed), THEN the run is the
+// take-off floor again and the height is kept. Regression: a simulated flight leaving a 0.9 m
+// box re-locked on the box's floor, its estimate rose 0.9 m and the controller put it down on
+// the box.
 TEST(HeightRun, ARunEndingOverTheTakeOffFloorIsThatFloorHoweverItRamped) {
   Hover hover;
   hover.fly(1.0, [](double) { return 1.0f; });

@@ -531,9 +531,9 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     const bool jumped = std::fabs(f.run_first_nu - f.last_taken_nu) > params_.altitude_step_tol_m;
     const bool stayed = std::fabs(iz.nu - f.run_first_nu) <= params_.altitude_step_tol_m;
     // Over a raised floor, a run that ends where the take-off floor would put it is that floor
-    // again, however it got there: leaving a box's edge, the averaged deflected beams straddle
-    // it and ramp, which is no clean jump; taken for the estimate's error, the run re-locked the
-    // height on the box's floor (a simulated flight then dropped 0.9 m onto the box).
+    // again, however it got there: leaving a box, a tilted beam meets its side face and reads
+    // heights in between, a ramp and no clean jump; taken for the estimate's error, the run
+    // re-locked the height on the box's floor (a simulated flight then dropped 0.9 m onto it).
     const bool back_over_take_off_floor =
         f.floor_m != 0.0f && std::fabs(iz.nu - f.floor_m) <= params_.altitude_step_tol_m;
     if (!((jumped && stayed) || back_over_take_off_floor) || !(iz.s > 0.0f)) {

@@ -48,7 +48,7 @@ struct EkfParams {
   // innovation within altitude_step_tol_m of its first), the floor moved (a box, a bench): the
   // floor under the vehicle is placed again and the world height kept. So is a run over a raised
   // floor that ends within altitude_step_tol_m of where the take-off floor would put it, however
-  // it got there (a box's edge, straddled by the averaged beams, ramps). Otherwise the estimate
+  // it got there (at a box's edge a tilted beam meets its side face: a ramp). Otherwise the estimate
   // moved (a height that crept out of its own gate and would refuse every true reading after
   // it): the height is set from the altimeter again.
   // Off by default: in the simulator's gt-building it cost 2 of 30 UTM-30LX flights a contact
