@@ -116,6 +116,30 @@ TEST(HeightRun, ASteadyStepIsTheFloorAndTheHeightIsKept) {
   EXPECT_EQ(c.altitude_relocks, 0u);
 }
 
+// GIVEN a height held at 1 m, WHEN a 0.45 m bench comes under the vehicle and its readings ramp
+// down to it over four readings (a tilted beam meets the bench's side face first: steps under
+// the tolerance, the last 0.25 m from the first) and stay, THEN the run is a floor step and the
+// height is kept. Regression: a simulated flight entering over a 0.9 m box took such a run for
+// the estimate's error, re-locked its height 0.9 m low and climbed 0.9 m.
+TEST(HeightRun, AStepWhoseFirstReadingsRampIsStillTheFloor) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  const double t0 = hover.filter().state().stamp.seconds();
+  auto ramping = [t0](double t) {
+    constexpr float kEdge[] = {0.8f, 0.72f, 0.64f, 0.58f};
+    const auto i = static_cast<std::size_t>((t - t0) / 0.02 + 0.5) - 1;
+    return i < 4 ? kEdge[i] : 0.55f;
+  };
+  expect_decided_after_its_time(fly_until_taken(hover, ramping));
+  const NavFilterCounters& c = hover.filter().counters();
+  EXPECT_EQ(c.floor_steps, 1u);
+  EXPECT_EQ(c.altitude_relocks, 0u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+  std::vector<Status> on_bench = hover.fly(1.0, [](double) { return 0.55f; });
+  EXPECT_EQ(count(on_bench, Status::kOk), static_cast<int>(on_bench.size()));
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+}
+
 // GIVEN a vehicle at 1 m over a 0.45 m bench (a floor step taken), WHEN it leaves the bench's
 // edge and the readings ramp back to the floor (a tilted beam meets the bench's side face: a
 // jump of 0.3 m, then steps under the tolerance, no clean jump that stayed), THEN the run is the

@@ -514,8 +514,14 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
       f.heights_rejected = 0;
       f.rejected_run_s = 0;
       f.run_first_nu = iz.nu;
+      f.run_settled_nu = iz.nu;
+      f.run_settled_s = 0;
     }
     f.run_last_nu = iz.nu;
+    if (!(std::fabs(iz.nu - f.run_settled_nu) <= params_.altitude_step_tol_m)) {
+      f.run_settled_nu = iz.nu;
+      f.run_settled_s = f.rejected_run_s;
+    }
     if (f.heights_rejected < UINT8_MAX) ++f.heights_rejected;
     const bool decided = params_.altitude_relock_s > 0.0f && f.heights_rejected >= kRelockMinRejected &&
                          f.rejected_run_s >= params_.altitude_relock_s && std::isfinite(iz.nu);
@@ -525,11 +531,13 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     }
     f.heights_rejected = 0;
     // A floor step jumped: its first reading lay beyond the tolerance from the last one taken
-    // (an estimate creeping out of its gate does not), and it stayed (the last within the
-    // tolerance of the first). Anything else is the estimate's error; so is a run met with no
-    // usable variance, which no update could weigh.
+    // (an estimate creeping out of its gate does not), and it stayed (its readings settled, no
+    // later than kSettledShare of the run before now, and have not moved on since; entering a
+    // box, a tilted beam meets its side face first and ramps the run's first readings down to
+    // the top). Anything else is the estimate's error; so is a run met with no usable
+    // variance, which no update could weigh.
     const bool jumped = std::fabs(f.run_first_nu - f.last_taken_nu) > params_.altitude_step_tol_m;
-    const bool stayed = std::fabs(iz.nu - f.run_first_nu) <= params_.altitude_step_tol_m;
+    const bool stayed = f.rejected_run_s - f.run_settled_s >= kSettledShare * params_.altitude_relock_s;
     // Over a raised floor, a run that ends where the take-off floor would put it is that floor
     // again, however it got there: leaving a box, a tilted beam meets its side face and reads
     // heights in between, a ramp and no clean jump; taken for the estimate's error, the run

@@ -44,8 +44,10 @@ struct EkfParams {
   // run (readings rejected in a row, no innovation further than altitude_step_tol_m from the one before)
   // that lasts altitude_relock_s (IMU gaps included) and kRelockMinRejected readings is decided.
   // If the readings jumped (the run's first innovation over altitude_step_tol_m from that of the
-  // last reading taken: the estimate may have moved between them) and stayed (its last
-  // innovation within altitude_step_tol_m of its first), the floor moved (a box, a bench): the
+  // last reading taken: the estimate may have moved between them) and stayed (its readings
+  // settled, none over altitude_step_tol_m from where they had, for NavFilter::kSettledShare of
+  // altitude_relock_s before the decision: at a box's edge a tilted beam meets its side face
+  // and ramps the first few), the floor moved (a box, a bench): the
   // floor under the vehicle is placed again and the world height kept. So is a run over a raised
   // floor that ends within altitude_step_tol_m of where the take-off floor would put it, however
   // it got there (at a box's edge a tilted beam meets its side face: a ramp). Otherwise the estimate

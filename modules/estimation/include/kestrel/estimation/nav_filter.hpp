@@ -151,6 +151,11 @@ class NavFilter {
   // Fewest gated heights in a run before altitude_relock_s decides it: one stray reading
   // across a long gap between altimeter samples is not a run.
   static constexpr uint8_t kRelockMinRejected = 5;
+  // A run has stayed when its readings last moved (over altitude_step_tol_m from where they
+  // had settled) no later than this share of altitude_relock_s before it is decided: a box's
+  // side face ramps the first few readings, and a climb the filter does not see (0.5 m/s moves
+  // them 0.1 m in 0.2 s) keeps moving them.
+  static constexpr float kSettledShare = 0.6f;
   // Plausibility bounds of the inputs (far beyond any sensor's range or indoor flight).
   static constexpr float kMaxAccelMps2 = 1000.0f;  // about 100 g
   static constexpr float kMaxGyroRadps = 100.0f;
@@ -195,6 +200,8 @@ class NavFilter {
     float rejected_run_s = 0;
     float run_first_nu = 0;        // the run's first rejected height's innovation, m
     float run_last_nu = 0;         // and its latest
+    float run_settled_nu = 0;      // where its readings settled: the latest over the tolerance from the one before
+    float run_settled_s = 0;       // ...settled at, and the run's time then
     float last_taken_nu = 0;       // the innovation of the last height taken, m
     uint8_t heights_rejected = 0;  // in a row, saturating
     bool height_known = false;     // false until the first altimeter sample
