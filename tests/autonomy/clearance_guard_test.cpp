@@ -85,6 +85,17 @@ TEST(ClearanceGuard, OutsideTheFlightAltitudeNothingChangesAndTheRiseIsForgotten
   EXPECT_FLOAT_EQ(height_after(g, kT0 + Duration::from_ms(200), 0.0f), 1.0f);
 }
 
+// On the take-off floor the flight altitude is the operator's, whatever the clearance: a 0.3 m
+// flight with a 0.5 m clearance is not raised until a raised floor is found.
+TEST(ClearanceGuard, OnTheTakeOffFloorNothingIsRaisedWhateverTheClearance) {
+  ClearanceParams p;
+  p.min_clearance_m = 0.5f;
+  ClearanceGuard g(p);
+  EXPECT_FLOAT_EQ(height_after(g, kT0, 0.0f, 0.3f), 0.3f);
+  EXPECT_FLOAT_EQ(height_after(g, kT0 + Duration::from_ms(100), -0.2f, 0.3f), 0.3f);
+  EXPECT_NEAR(height_after(g, kT0 + Duration::from_ms(200), 0.15f, 0.3f), 0.65f, 1e-6f);
+}
+
 TEST(ClearanceGuard, ZeroClearanceTurnsItOff) {
   ClearanceParams p;
   p.min_clearance_m = 0.0f;

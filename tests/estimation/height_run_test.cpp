@@ -1,11 +1,14 @@
-// Runs of rejected heights (EkfParams::altitude_relock_s): a run that jumped at once and stayed
-// is a step of the floor (the world height kept, the floor placed again); any other (grown, or
-// crept out of the gate) is the estimate's (the height re-locked on the altimeter). Regression: a
+// Runs of rejected heights (EkfParams::altitude_relock_s): a run that jumped at once and settled
+// early (NavFilter::kSettledShare) is a step of the floor (the world height kept, the floor placed
+// again), and so is one over a raised floor that ends where the take-off floor would put it; any
+// other (still moving late, or crept out of the gate) is the estimate's (the height re-locked on
+// the altimeter). Regression: a
 // simulated flight's estimate drifted past the gate over a 0.45 m bench, rejected every
 // reading after it (89 in a row) and the controller climbed through the ceiling.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -140,12 +143,20 @@ TEST(HeightRun, AStepWhoseFirstReadingsRampIsStillTheFloor) {
   EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
 }
 
+// Readings at 50 Hz from `first`, moving `step` each up to `last` and staying there: a box's
+// side face met by a tilted beam, read as the vehicle passes its edge. Times from `t0`.
+auto ramp_from(double t0, float first, float step, float last) {
+  return [=](double t) {
+    const float v = first + step * static_cast<float>(std::lround((t - t0) / 0.02) - 1);
+    return step > 0 ? std::min(v, last) : std::max(v, last);
+  };
+}
+
 // GIVEN a vehicle at 1 m over a 0.45 m bench (a floor step taken), WHEN it leaves the bench's
-// edge and the readings ramp back to the floor (a tilted beam meets the bench's side face: a
-// jump of 0.3 m, then steps under the tolerance, no clean jump that stayed), THEN the run is the
-// take-off floor again and the height is kept. Regression: a simulated flight leaving a 0.9 m
-// box re-locked on the box's floor, its estimate rose 0.9 m and the controller put it down on
-// the box.
+// edge and the readings ramp back to the floor (a jump of 0.15 m, then 2 cm a reading for 0.3 s:
+// they settle too late for a floor step), THEN the run is the take-off floor again and the height
+// is kept. Regression: a simulated flight leaving a 0.9 m box re-locked on the box's floor, its
+// estimate rose 0.9 m and the controller put it down on the box.
 TEST(HeightRun, ARunEndingOverTheTakeOffFloorIsThatFloorHoweverItRamped) {
   Hover hover;
   hover.fly(1.0, [](double) { return 1.0f; });
@@ -153,12 +164,7 @@ TEST(HeightRun, ARunEndingOverTheTakeOffFloorIsThatFloorHoweverItRamped) {
   const NavFilterCounters& c = hover.filter().counters();
   ASSERT_EQ(c.floor_steps, 1u);
   hover.fly(0.5, [](double) { return 0.55f; });
-  const double t0 = hover.filter().state().stamp.seconds();
-  auto ramping = [t0](double t) {
-    constexpr float kEdge[] = {0.85f, 0.9f, 0.95f};  // 0.05 m apart
-    const auto i = static_cast<std::size_t>((t - t0) / 0.02 + 0.5) - 1;
-    return i < 3 ? kEdge[i] : 1.0f;
-  };
+  const auto ramping = ramp_from(hover.filter().state().stamp.seconds(), 0.7f, 0.02f, 1.0f);
   expect_decided_after_its_time(fly_until_taken(hover, ramping));
   EXPECT_EQ(c.floor_steps, 2u);
   EXPECT_EQ(c.altitude_relocks, 0u);
@@ -166,6 +172,20 @@ TEST(HeightRun, ARunEndingOverTheTakeOffFloorIsThatFloorHoweverItRamped) {
   std::vector<Status> off_bench = hover.fly(1.0, [](double) { return 1.0f; });
   EXPECT_EQ(count(off_bench, Status::kOk), static_cast<int>(off_bench.size()));
   EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 5e-3f);
+}
+
+// GIVEN a height held at 1 m over the take-off floor, WHEN the readings jump 0.3 m down and
+// move on 2 cm a reading for 0.3 s before they stay, THEN they settled too late to be a floor
+// step (kSettledShare): the run is the estimate's, and the height is re-locked on them.
+TEST(HeightRun, ARunStillMovingLateIsTheEstimates) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  const auto ramping = ramp_from(hover.filter().state().stamp.seconds(), 0.7f, -0.02f, 0.4f);
+  expect_decided_after_its_time(fly_until_taken(hover, ramping));
+  const NavFilterCounters& c = hover.filter().counters();
+  EXPECT_EQ(c.altitude_relocks, 1u);
+  EXPECT_EQ(c.floor_steps, 0u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 0.4f, 1e-2f);
 }
 
 // GIVEN a height held at 1 m, WHEN the readings jump away and keep moving (the estimate is what

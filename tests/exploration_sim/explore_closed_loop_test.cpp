@@ -25,7 +25,8 @@
 //    (autonomy/clearance_guard.hpp), and does not with the guard off.
 #include <gtest/gtest.h>
 
-#include <fstream>
+#include <unistd.h>
+
 #include <string>
 #include <string_view>
 
@@ -35,6 +36,7 @@
 #include "kestrel/sim/mission_runner.hpp"
 #include "kestrel/sim/simulation.hpp"
 #include "kestrel/sim/world_parser.hpp"
+#include "temp_file.hpp"
 
 namespace kestrel::sim {
 namespace {
@@ -61,6 +63,8 @@ struct Flight {
   double home_fix_references = -1;  // the home re-localisation's reference scans
   double home_fix_searches = -1;    // ...and its searches on the way home
   double max_altitude_m = 0;
+  double floor_steps = -1;      // the height filter's (EkfParams::altitude_relock_s)
+  double clearance_rises = -1;  // the altitude set-point's (autonomy/clearance_guard.hpp)
   Eigen::Vector3d final_truth = Eigen::Vector3d::Zero();
 };
 
@@ -101,6 +105,8 @@ Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool ut
   f.home_fix_references = metric(*mission, "home_fix_references");
   f.home_fix_searches = metric(*mission, "home_fix_searches");
   f.max_altitude_m = rec.max_altitude_m();
+  f.floor_steps = metric(*mission, "nav.floor_steps");
+  f.clearance_rises = metric(*mission, "clearance_rises");
   f.final_truth = sim.truth().position_m;
   return f;
 }
@@ -170,25 +176,28 @@ room corridor 0 0 9 0 9 1.6 0 1.6
 TEST(ExploreClosedLoop, OverABoxTheAltimeterFoundTheFlightKeepsItsClearance) {
   const WorldParseResult world = parse_world(kBoxCorridor, "box-corridor");
   ASSERT_TRUE(world.ok) << world.error;
-  const std::string ekf = ::testing::TempDir() + "kestrel_box_corridor_runs.ekf";
-  {
-    std::ofstream out(ekf);
-    out << "altitude_relock_s = 0.4\n";
-    ASSERT_TRUE(out.good());
-  }
+  // Named by the process: the presets' test runs may share the temporary directory.
+  const std::string name = "kestrel_box_corridor_runs_" + std::to_string(::getpid()) + ".ekf";
   MissionOptions guarded;
-  guarded.values["ekf"] = ekf;
+  guarded.values["ekf"] = test::write_temp_file(name.c_str(), "altitude_relock_s = 0.4\n");
   const Flight f = explore(world, 90.0, 1, false, 30.0, guarded, true);
   ASSERT_EQ(f.run.status, Status::kOk) << f.run.message;
   EXPECT_FALSE(f.run.collided) << f.run.message;
   EXPECT_GT(f.max_altitude_m, 1.1);
+  // Onto the box and off it, out and home (a floor left on the box would keep the rise and
+  // miss home's height).
+  EXPECT_GE(f.floor_steps, 4.0);
+  EXPECT_GE(f.clearance_rises, 2.0);
+  EXPECT_TRUE(f.returned_home);
   EXPECT_TRUE(f.landed);
+  EXPECT_LT(f.final_truth.z(), 0.1);
   EXPECT_EQ(f.allocs, 0.0);
   MissionOptions unguarded = guarded;
   unguarded.values["clearance_m"] = "0";
   const Flight g = explore(world, 90.0, 1, false, 30.0, unguarded, true);
   ASSERT_EQ(g.run.status, Status::kOk) << g.run.message;
   EXPECT_LT(g.max_altitude_m, 1.06);
+  EXPECT_EQ(g.clearance_rises, 0.0);
 }
 
 // Under qemu on overo the same seed flies differently (float rounding in a chaotic closed

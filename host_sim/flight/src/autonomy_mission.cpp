@@ -557,6 +557,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("home_fix_confirmed", hf.confirmed);
   out.emplace_back("home_fixes", c.home_fixes);
   out.emplace_back("home_fixes_refused", c.home_fixes_refused);
+  out.emplace_back("clearance_rises", c.clearance_rises);
   // When each phase began (its first time): an explore phase that ended well before
   // explore_s ran out of frontiers.
   for (std::size_t i = 0; i < mission::kPhaseCount; ++i) {

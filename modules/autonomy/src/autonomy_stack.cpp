@@ -316,7 +316,9 @@ void AutonomyStack::guidance_task(TimeUs now) {
   // Exploring and flying home the mission's height is the flight altitude, nobody's target;
   // a waypoint's height is the operator's, and the mission must still arrive at it.
   const bool exploring = mission_.phase() == mission::Phase::kExplore || mission_.phase() == mission::Phase::kReturn;
+  const bool was_raised = clearance_.rise_m() > 0.0f;
   clearance_.apply(now, filter_.floor_m(), exploring, setpoint_);
+  if (!was_raised && clearance_.rise_m() > 0.0f) ++counters_.clearance_rises;
 }
 
 void AutonomyStack::control_task(TimeUs now) {

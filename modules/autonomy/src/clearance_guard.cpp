@@ -17,10 +17,12 @@ void ClearanceGuard::apply(TimeUs now, float floor_m, bool in_flight, GuidanceSe
     rise_m_ = 0.0f;
     return;
   }
-  // A floor or set-point that is not a number wants no rise, and the standing one is held as
-  // any other (the controller refuses a set-point that is not finite).
+  // Only a raised floor wants a rise: on the take-off floor the flight altitude is the
+  // operator's, whatever the clearance. A floor or set-point that is not a number wants none,
+  // and the standing one is held as any other (the controller refuses a set-point that is not
+  // finite).
   const float want = floor_m + params_.min_clearance_m - setpoint.position_m.z();
-  const float wanted = std::isfinite(want) ? std::clamp(want, 0.0f, params_.max_rise_m) : 0.0f;
+  const float wanted = floor_m > 0.0f && std::isfinite(want) ? std::clamp(want, 0.0f, params_.max_rise_m) : 0.0f;
   // A clock that stepped back counts as the hold being over: it cannot stretch a rise forever.
   const bool held = now >= wanted_at_ && (now - wanted_at_).seconds() < params_.hold_s;
   if (wanted >= rise_m_ || !held) {

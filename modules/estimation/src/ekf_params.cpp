@@ -28,7 +28,7 @@ std::array<params::ParamField, kEkfParamCount> ekf_param_fields(EkfParams& p) {
       {"altitude_relock_s", &p.altitude_relock_s, 0.0f, 60.0f, "s",
        "a run of gated heights this long is decided: a floor step or a re-lock (0: never)"},
       {"altitude_step_tol_m", &p.altitude_step_tol_m, 0.01f, 0.3f, "m",
-       "largest step within a run of gated heights; least jump and most spread of a floor step"},
+       "largest step within a run of gated heights; least jump of a floor step; settled readings' spread"},
       {"altitude_relock_vel_var", &p.altitude_relock_vel_var, 0.0f, 1e2f, "(m/s)^2",
        "added to the vertical velocity variance at a height re-lock"},
       {"max_imu_gap_s", &p.max_imu_gap_s, 1e-3f, 10.0f, "s", "longer IMU gaps restart the state history"},

@@ -531,8 +531,8 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     }
     f.heights_rejected = 0;
     // A floor step jumped: its first reading lay beyond the tolerance from the last one taken
-    // (an estimate creeping out of its gate does not), and it stayed (its readings settled, no
-    // later than kSettledShare of the run before now, and have not moved on since; entering a
+    // (an estimate creeping out of its gate does not), and it stayed (its readings settled at
+    // least kSettledShare of altitude_relock_s before now, and have not moved on since; entering a
     // box, a tilted beam meets its side face first and ramps the run's first readings down to
     // the top). Anything else is the estimate's error; so is a run met with no usable
     // variance, which no update could weigh.
@@ -540,10 +540,12 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     const bool stayed = f.rejected_run_s - f.run_settled_s >= kSettledShare * params_.altitude_relock_s;
     // Over a raised floor, a run that ends where the take-off floor would put it is that floor
     // again, however it got there: leaving a box, a tilted beam meets its side face and reads
-    // heights in between, a ramp and no clean jump; taken for the estimate's error, the run
+    // heights in between, a ramp that may settle late; taken for the estimate's error, the run
     // re-locked the height on the box's floor (a simulated flight then dropped 0.9 m onto it).
-    const bool back_over_take_off_floor =
-        f.floor_m != 0.0f && std::fabs(iz.nu - f.floor_m) <= params_.altitude_step_tol_m;
+    // It must have moved over the tolerance: an estimate creeping out of its gate over a floor
+    // just over the tolerance high ends near where the take-off floor would put it too.
+    const bool back_over_take_off_floor = f.floor_m != 0.0f && std::fabs(iz.nu) > params_.altitude_step_tol_m &&
+                                          std::fabs(iz.nu - f.floor_m) <= params_.altitude_step_tol_m;
     if (!((jumped && stayed) || back_over_take_off_floor) || !(iz.s > 0.0f)) {
       // The estimate, not the floor, moved. The vertical velocity that carried it away is
       // suspect too, so it is loosened as well. Counted as a re-lock only, not an update.

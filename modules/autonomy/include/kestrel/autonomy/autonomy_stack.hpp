@@ -73,6 +73,7 @@ struct StackCounters {
   uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
   uint32_t home_fixes = 0;           // home re-localisations the filter applied
   uint32_t home_fixes_refused = 0;   // ...and refused
+  uint32_t clearance_rises = 0;      // altitude set-point raised over furniture the altimeter found (from none)
 };
 
 // The newest scan the compact SLAM processed, in the filter's frame (through the SlamFrame it

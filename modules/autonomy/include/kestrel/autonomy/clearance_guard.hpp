@@ -14,8 +14,15 @@
 // after the floor falls again, because the body is wider than the altimeter's spot and its rim
 // is still over the box when the spot has left it.
 //
-// It cannot help before the altimeter is over the obstacle: a body rim that meets it first is
-// the operator's flight altitude to choose (mission argument altitude_m).
+// It acts only where the filter places the floor above the take-off floor, so only with its runs
+// of rejected heights on (EkfParams::altitude_relock_s > 0; in the simulator, with obstacle tops
+// seen from above, sim.laser_sees_tops_from_above); on the take-off floor the flight altitude is
+// the operator's whatever the clearance. It cannot help before the altimeter is over the
+// obstacle: a body rim that meets it first is the operator's flight altitude to choose (mission
+// argument altitude_m). Known: the mission's set-point the cycle it turns from exploring home is
+// the estimated position, already raised, and is raised again for that cycle; and home, checked
+// at the flight altitude in 3D, is not arrived at while a rise is held (at most hold_s after
+// the vehicle leaves a raised floor).
 //
 // No heap, no exceptions: the rise and when it was last wanted are the only state.
 #include "kestrel/core/messages.hpp"

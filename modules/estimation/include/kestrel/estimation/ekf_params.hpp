@@ -49,8 +49,8 @@ struct EkfParams {
   // altitude_relock_s before the decision: at a box's edge a tilted beam meets its side face
   // and ramps the first few), the floor moved (a box, a bench): the
   // floor under the vehicle is placed again and the world height kept. So is a run over a raised
-  // floor that ends within altitude_step_tol_m of where the take-off floor would put it, however
-  // it got there (at a box's edge a tilted beam meets its side face: a ramp). Otherwise the estimate
+  // floor that moved over altitude_step_tol_m and ends within it of where the take-off floor
+  // would put it, however it got there (leaving a box, the side face ramps it). Otherwise the estimate
   // moved (a height that crept out of its own gate and would refuse every true reading after
   // it): the height is set from the altimeter again.
   // Off by default: in the simulator's gt-building it cost 2 of 30 UTM-30LX flights a contact
@@ -58,7 +58,7 @@ struct EkfParams {
   // (the simulator's sim.laser_sees_tops_from_above) it is what keeps the height over furniture.
   // To become the default with that model (modules/exploration/EXPERIMENTS.md).
   float altitude_relock_s = 0.0f;       // s: 0 never decides (a run stays rejected until the gate widens)
-  float altitude_step_tol_m = 0.1f;     // m: a run's steps between readings; a floor step's jump and spread
+  float altitude_step_tol_m = 0.1f;     // m: a run's steps between readings; a floor step's least jump; how far settled readings move
   float altitude_relock_vel_var = 0.25f;// (m/s)^2: added to the vertical velocity's variance at a re-lock
   // Bad input handling.
   float max_imu_gap_s = 0.1f;       // s: a longer IMU gap restarts the history

@@ -200,8 +200,8 @@ class NavFilter {
     float rejected_run_s = 0;
     float run_first_nu = 0;        // the run's first rejected height's innovation, m
     float run_last_nu = 0;         // and its latest
-    float run_settled_nu = 0;      // where its readings settled: the latest over the tolerance from the one before
-    float run_settled_s = 0;       // ...settled at, and the run's time then
+    float run_settled_nu = 0;      // where its readings settled: the latest over the tolerance from the settled one
+    float run_settled_s = 0;       // the run's time when they settled there
     float last_taken_nu = 0;       // the innovation of the last height taken, m
     uint8_t heights_rejected = 0;  // in a row, saturating
     bool height_known = false;     // false until the first altimeter sample
