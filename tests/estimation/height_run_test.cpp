@@ -99,11 +99,12 @@ void expect_decided_after_its_time(const std::vector<Status>& run) {
 // readings are rejected for altitude_relock_s, the run is taken as a floor step (the height
 // stays 1 m, the altimeter's floor is placed 0.45 m up) and the readings after it are taken;
 // WHEN the bench is left, THEN the floor steps back to exactly the take-off floor.
-TEST(HeightRun, ASteadyStepIsTheFloorAndTheHeightIsKept) {
-  Hover hover;
-  hover.fly(1.0, [](double) { return 1.0f; });
-  ASSERT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-3f);
-  expect_decided_after_its_time(fly_until_taken(hover, [](double) { return 0.55f; }));
+// From a hover at 1 m, the readings of a 0.45 m bench coming under the vehicle (`reading` of
+// the time): the run is decided after its time as a floor step, the height kept at 1 m, and the
+// bench's readings are taken for a second after it.
+template <typename HeightOf>
+void expect_the_bench_a_floor_step(Hover& hover, HeightOf reading) {
+  expect_decided_after_its_time(fly_until_taken(hover, reading));
   const NavFilterCounters& c = hover.filter().counters();
   EXPECT_EQ(c.floor_steps, 1u);
   EXPECT_EQ(c.altitude_relocks, 0u);
@@ -111,6 +112,14 @@ TEST(HeightRun, ASteadyStepIsTheFloorAndTheHeightIsKept) {
   std::vector<Status> on_bench = hover.fly(1.0, [](double) { return 0.55f; });
   EXPECT_EQ(count(on_bench, Status::kOk), static_cast<int>(on_bench.size()));
   EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+}
+
+TEST(HeightRun, ASteadyStepIsTheFloorAndTheHeightIsKept) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  ASSERT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-3f);
+  expect_the_bench_a_floor_step(hover, [](double) { return 0.55f; });
+  const NavFilterCounters& c = hover.filter().counters();
   // Off the bench, 2 cm of the steps' error: snapped back to the take-off floor.
   expect_decided_after_its_time(fly_until_taken(hover, [](double) { return 1.02f; }));
   EXPECT_EQ(c.floor_steps, 2u);
@@ -133,14 +142,7 @@ TEST(HeightRun, AStepWhoseFirstReadingsRampIsStillTheFloor) {
     const auto i = static_cast<std::size_t>((t - t0) / 0.02 + 0.5) - 1;
     return i < 4 ? kEdge[i] : 0.55f;
   };
-  expect_decided_after_its_time(fly_until_taken(hover, ramping));
-  const NavFilterCounters& c = hover.filter().counters();
-  EXPECT_EQ(c.floor_steps, 1u);
-  EXPECT_EQ(c.altitude_relocks, 0u);
-  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
-  std::vector<Status> on_bench = hover.fly(1.0, [](double) { return 0.55f; });
-  EXPECT_EQ(count(on_bench, Status::kOk), static_cast<int>(on_bench.size()));
-  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+  expect_the_bench_a_floor_step(hover, ramping);
 }
 
 // Readings at 50 Hz from `first`, moving `step` each up to `last` and staying there: a box's
