@@ -25,8 +25,6 @@
 //    (autonomy/clearance_guard.hpp), and does not with the guard off.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <string>
 #include <string_view>
 
@@ -36,7 +34,6 @@
 #include "kestrel/sim/mission_runner.hpp"
 #include "kestrel/sim/simulation.hpp"
 #include "kestrel/sim/world_parser.hpp"
-#include "temp_file.hpp"
 
 namespace kestrel::sim {
 namespace {
@@ -176,10 +173,8 @@ room corridor 0 0 9 0 9 1.6 0 1.6
 TEST(ExploreClosedLoop, OverABoxTheAltimeterFoundTheFlightKeepsItsClearance) {
   const WorldParseResult world = parse_world(kBoxCorridor, "box-corridor");
   ASSERT_TRUE(world.ok) << world.error;
-  // Named by the process: the presets' test runs may share the temporary directory.
-  const std::string name = "kestrel_box_corridor_runs_" + std::to_string(::getpid()) + ".ekf";
   MissionOptions guarded;
-  guarded.values["ekf"] = test::write_temp_file(name.c_str(), "altitude_relock_s = 0.4\n");
+  guarded.values["ekf"] = KESTREL_SOURCE_DIR "/host_sim/sim/configs/height_runs.ekf";  // the sweeps' file
   const Flight f = explore(world, 90.0, 1, false, 30.0, guarded, true);
   ASSERT_EQ(f.run.status, Status::kOk) << f.run.message;
   EXPECT_FALSE(f.run.collided) << f.run.message;
