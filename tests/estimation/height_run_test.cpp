@@ -170,6 +170,26 @@ TEST(HeightRun, ARunEndingOverTheTakeOffFloorIsThatFloorHoweverItRamped) {
   EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 5e-3f);
 }
 
+// GIVEN a height held at 1 m, WHEN a bench's first reading is its edge (0.64 m), the rest read
+// 0.55 m, and from the 20th every other one reads 0.53 m, just past the tolerance from the
+// edge's, THEN the run settled at its first reading (a lone reading past it, never followed by
+// another, does not move it) and is a floor step. Regression: a simulated URG-04LX flight whose deciding reading
+// lay 1 mm past the tolerance from its edge reading re-locked 0.9 m low over a box.
+TEST(HeightRun, AReadingJitteringPastTheToleranceDoesNotUnsettleARun) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  const double t0 = hover.filter().state().stamp.seconds();
+  auto jittering = [t0](double t) {
+    const long i = std::lround((t - t0) / 0.02) - 1;
+    return i == 0 ? 0.64f : (i >= 19 && i % 2 == 1 ? 0.53f : 0.55f);
+  };
+  expect_decided_after_its_time(fly_until_taken(hover, jittering));
+  const NavFilterCounters& c = hover.filter().counters();
+  EXPECT_EQ(c.floor_steps, 1u);
+  EXPECT_EQ(c.altitude_relocks, 0u);
+  EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+}
+
 // GIVEN a height held at 1 m over the take-off floor, WHEN the readings jump 0.3 m down and
 // move on 2 cm a reading for 0.3 s before they stay, THEN they settled too late to be a floor
 // step (kSettledShare): the run is the estimate's, and the height is re-locked on them.

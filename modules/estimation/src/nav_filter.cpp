@@ -516,11 +516,19 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
       f.run_first_nu = iz.nu;
       f.run_settled_nu = iz.nu;
       f.run_settled_s = 0;
+      f.run_departing = false;
     }
     f.run_last_nu = iz.nu;
-    if (!(std::fabs(iz.nu - f.run_settled_nu) <= params_.altitude_step_tol_m)) {
-      f.run_settled_nu = iz.nu;
-      f.run_settled_s = f.rejected_run_s;
+    bool departs = !(std::fabs(iz.nu - f.run_settled_nu) <= params_.altitude_step_tol_m);
+    if (departs && f.run_departing) {
+      f.run_settled_nu = f.run_departed_nu;
+      f.run_settled_s = f.run_departed_s;
+      departs = !(std::fabs(iz.nu - f.run_settled_nu) <= params_.altitude_step_tol_m);
+    }
+    f.run_departing = departs;
+    if (departs) {
+      f.run_departed_nu = iz.nu;
+      f.run_departed_s = f.rejected_run_s;
     }
     if (f.heights_rejected < UINT8_MAX) ++f.heights_rejected;
     const bool decided = params_.altitude_relock_s > 0.0f && f.heights_rejected >= kRelockMinRejected &&

@@ -202,6 +202,11 @@ class NavFilter {
     float run_last_nu = 0;         // and its latest
     float run_settled_nu = 0;      // where its readings settled: the latest over the tolerance from the settled one
     float run_settled_s = 0;       // the run's time when they settled there
+    // A reading over the tolerance from the settled one, not yet followed by another: a lone
+    // jitter (or the deciding reading) does not move the settled point, a move does, from it.
+    float run_departed_nu = 0;
+    float run_departed_s = 0;
+    bool run_departing = false;
     float last_taken_nu = 0;       // the innovation of the last height taken, m
     uint8_t heights_rejected = 0;  // in a row, saturating
     bool height_known = false;     // false until the first altimeter sample
