@@ -74,6 +74,19 @@ TEST(ClearanceGuard, TheRiseIsHeldAfterTheFloorFallsThenDropped) {
   EXPECT_NEAR(height_after(g, kT0 + Duration::from_ms(5500), 0.85f), 1.1f, 1e-6f);
 }
 
+// GIVEN a rise standing over the box, WHEN one cycle's set-point already stands higher (the
+// mission holds the estimated, raised, height the cycle it turns home) or part way up, THEN it is
+// raised to the height kept and no further: the height is held, not the rise.
+TEST(ClearanceGuard, ASetpointAlreadyRaisedIsNotRaisedAgain) {
+  ClearanceGuard g;
+  EXPECT_NEAR(height_after(g, kT0, 0.9f), 1.15f, 1e-6f);
+  EXPECT_NEAR(height_after(g, kT0 + Duration::from_ms(100), 0.9f, 1.16f), 1.16f, 1e-6f);
+  EXPECT_FLOAT_EQ(g.rise_m(), 0.0f);
+  EXPECT_NEAR(height_after(g, kT0 + Duration::from_ms(200), 0.0f, 1.1f), 1.15f, 1e-6f);  // held
+  EXPECT_NEAR(g.rise_m(), 0.05f, 1e-6f);
+  EXPECT_NEAR(height_after(g, kT0 + Duration::from_ms(300), 0.0f), 1.15f, 1e-6f);
+}
+
 // Taking off, landing or on the ground the height is the mission's own: nothing is changed and
 // a standing rise is forgotten, so that the next flight altitude starts unraised.
 TEST(ClearanceGuard, OutsideTheFlightAltitudeNothingChangesAndTheRiseIsForgotten) {

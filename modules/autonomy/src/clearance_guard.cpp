@@ -15,20 +15,24 @@ Status validate(const ClearanceParams& p) {
 void ClearanceGuard::apply(TimeUs now, float floor_m, bool in_flight, GuidanceSetpoint& setpoint) {
   if (!in_flight || params_.min_clearance_m <= 0.0f) {
     rise_m_ = 0.0f;
+    kept_above_m_ = kNothingUnder;
     return;
   }
-  // Only a raised floor wants a rise: on the take-off floor the flight altitude is the
-  // operator's, whatever the clearance. A floor or set-point that is not a number wants none,
-  // and the standing one is held as any other (the controller refuses a set-point that is not
-  // finite).
-  const float want = floor_m + params_.min_clearance_m - setpoint.position_m.z();
-  const float wanted = floor_m > 0.0f && std::isfinite(want) ? std::clamp(want, 0.0f, params_.max_rise_m) : 0.0f;
+  // Only a raised floor wants a height: on the take-off floor the flight altitude is the
+  // operator's, whatever the clearance. A floor that is not a number wants none, and the
+  // standing height is held as any other. A height, not a rise, is held: a set-point that
+  // already stands above it (the estimated height the mission holds the cycle it turns home,
+  // already raised) is not raised again.
+  const float wanted = floor_m > 0.0f && std::isfinite(floor_m) ? floor_m + params_.min_clearance_m : kNothingUnder;
   // A clock that stepped back counts as the hold being over: it cannot stretch a rise forever.
   const bool held = now >= wanted_at_ && (now - wanted_at_).seconds() < params_.hold_s;
-  if (wanted >= rise_m_ || !held) {
-    rise_m_ = wanted;
+  if (wanted >= kept_above_m_ || !held) {
+    kept_above_m_ = wanted;
     wanted_at_ = now;
   }
+  // The controller refuses a set-point that is not finite: it is passed on unraised.
+  const float rise = kept_above_m_ - setpoint.position_m.z();
+  rise_m_ = std::isfinite(rise) ? std::clamp(rise, 0.0f, params_.max_rise_m) : 0.0f;
   setpoint.position_m.z() += rise_m_;
 }
 

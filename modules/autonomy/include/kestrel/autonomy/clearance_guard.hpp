@@ -19,12 +19,12 @@
 // seen from above, sim.laser_sees_tops_from_above); on the take-off floor the flight altitude is
 // the operator's whatever the clearance. It cannot help before the altimeter is over the
 // obstacle: a body rim that meets it first is the operator's flight altitude to choose (mission
-// argument altitude_m). Known: the mission's set-point the cycle it turns from exploring home is
-// the estimated position, already raised, and is raised again for that cycle; and home, checked
-// at the flight altitude in 3D, is not arrived at while a rise is held (at most hold_s after
-// the vehicle leaves a raised floor).
+// argument altitude_m). Home, checked at the flight altitude in 3D, is not arrived at while a
+// rise is held (at most hold_s after the vehicle leaves a raised floor).
 //
-// No heap, no exceptions: the rise and when it was last wanted are the only state.
+// No heap, no exceptions: the height kept and when it was last wanted are the only state.
+#include <limits>
+
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/status.hpp"
 #include "kestrel/core/time.hpp"
@@ -53,9 +53,12 @@ class ClearanceGuard {
   float rise_m() const { return rise_m_; }
 
  private:
+  static constexpr float kNothingUnder = -std::numeric_limits<float>::infinity();
+
   ClearanceParams params_;
-  float rise_m_ = 0.0f;
-  TimeUs wanted_at_;  // when the standing rise was last wanted
+  float kept_above_m_ = kNothingUnder;  // the set-point's least height: a raised floor's plus the clearance
+  TimeUs wanted_at_;                    // when it was last wanted
+  float rise_m_ = 0.0f;                 // this cycle's
 };
 
 }  // namespace kestrel::autonomy
