@@ -93,6 +93,21 @@ TEST(EkfParams, LoadsAFileAndReportsAMissingOne) {
   std::remove(path.c_str());
 }
 
+// The shipped file that turns the height filter's runs off (for comparing with the figures
+// flown before they were on) loads, and changes nothing else.
+TEST(EkfParams, TheShippedFileWithoutHeightRunsTurnsOnlyThemOff) {
+  EkfParams p;
+  params::ParamError err;
+  ASSERT_EQ(load_ekf_params(KESTREL_SOURCE_DIR "/host_sim/sim/configs/no_height_runs.ekf", p, err), Status::kOk)
+      << err.message;
+  EXPECT_EQ(p.altitude_relock_s, 0.0f);
+  EkfParams expected;
+  expected.altitude_relock_s = 0.0f;
+  const auto loaded = ekf_param_fields(p);
+  const auto defaults = ekf_param_fields(expected);
+  for (std::size_t i = 0; i < loaded.size(); ++i) EXPECT_EQ(*loaded[i].value, *defaults[i].value) << loaded[i].key;
+}
+
 // Every tool prints a parameter file's error in these words: a line's error with its line, a
 // file that will not open once, not "PATH:0: cannot open 'PATH'", and an inconsistent set (no
 // line, no path in its message) with the path that says which file.

@@ -30,16 +30,10 @@ ImuSample level_at_rest(TimeUs stamp) {
 
 // A hovering vehicle: one pose to start, IMU at rest, a height reading every kImuPerHeight
 // steps from `height(t_s)`; returns the status of each reading in order.
-// The runs as flown (altitude_relock_s is off by default).
-EkfParams runs_on() {
-  EkfParams p;
-  p.altitude_relock_s = 0.4f;
-  return p;
-}
 
 class Hover {
  public:
-  explicit Hover(const EkfParams& p = runs_on()) : filter_(std::make_unique<NavFilter>(p)) {
+  explicit Hover(const EkfParams& p = {}) : filter_(std::make_unique<NavFilter>(p)) {
     PoseMeasurement2 pm;
     pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
     EXPECT_EQ(filter_->update_pose(pm), Status::kOk);
@@ -250,8 +244,9 @@ TEST(HeightRun, ReadingsJumpingWithinARunAreNeverDecided) {
 // GIVEN altitude_relock_s = 0, THEN a step is rejected until the height's own variance has
 // grown to take it (here longer than the 1 s flown): the filter's behaviour before the runs.
 TEST(HeightRun, ZeroSecondsNeverDecides) {
+  EXPECT_EQ(EkfParams{}.altitude_relock_s, 0.4f);  // the default, which the other tests fly
   EkfParams p;
-  EXPECT_EQ(p.altitude_relock_s, 0.0f);  // the default
+  p.altitude_relock_s = 0.0f;
   Hover hover(p);
   hover.fly(1.0, [](double) { return 1.0f; });
   const std::vector<Status> s = hover.fly(1.0, [](double) { return 1.6f; });
@@ -315,7 +310,7 @@ TEST(HeightRun, AnImuGapCountsOnce) {
 // allowed for) over a floor it holds at 1 m, WHEN its height creeps out of its own gate, THEN
 // the run that follows did not jump and is the estimate's: re-locked, never taken as a floor.
 TEST(HeightRun, AnEstimateCreepingOutOfItsGateIsRelockedNotAFloor) {
-  EkfParams p = runs_on();
+  EkfParams p;
   p.accel_noise_z = 1e-9f;
   p.accel_bias_walk = 1e-14f;
   p.init_accel_bias_var = 1e-10f;
@@ -345,8 +340,8 @@ TEST(HeightRun, AnEstimateCreepingOutOfItsGateIsRelockedNotAFloor) {
 // run and must decide it at the same reading. Returns both, for the caller's checks.
 template <typename HeightAt>
 std::pair<std::unique_ptr<NavFilter>, std::unique_ptr<NavFilter>> fly_with_a_late_reading(HeightAt height_at) {
-  auto in_order = std::make_unique<NavFilter>(runs_on());
-  auto late = std::make_unique<NavFilter>(runs_on());
+  auto in_order = std::make_unique<NavFilter>(EkfParams{});
+  auto late = std::make_unique<NavFilter>(EkfParams{});
   PoseMeasurement2 pm;
   pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
   EXPECT_EQ(in_order->update_pose(pm), Status::kOk);

@@ -49,11 +49,11 @@ TEST(ConfigFile, ErrorsNameTheLine) {
   SimConfig cfg4;
   EXPECT_EQ(cfg4.apply(tops), "sim.laser_sees_tops_from_above must be 0 or 1");
   SimConfig cfg5;
-  EXPECT_EQ(cfg5.laser_faces_over_start(), FacesOverStart::kMissed);  // the default the README flew
-  ConfigFile on;
-  ASSERT_EQ(on.load(KESTREL_SOURCE_DIR "/host_sim/sim/configs/tops_from_above.cfg"), "");
-  EXPECT_EQ(cfg5.apply(on), "");
-  EXPECT_EQ(cfg5.laser_faces_over_start(), FacesOverStart::kMet);
+  EXPECT_EQ(cfg5.laser_faces_over_start(), FacesOverStart::kMet);  // the default: the world as it is
+  ConfigFile missed;
+  ASSERT_EQ(missed.load(KESTREL_SOURCE_DIR "/host_sim/sim/configs/tops_missed.cfg"), "");
+  EXPECT_EQ(cfg5.apply(missed), "");
+  EXPECT_EQ(cfg5.laser_faces_over_start(), FacesOverStart::kMissed);
   EXPECT_EQ(ConfigFile().load("/nonexistent.cfg"), "cannot open '/nonexistent.cfg'");
 }
 

@@ -33,11 +33,11 @@ struct SimConfig {
   }
   // sim.laser_sees_tops_from_above: 1 = a beam starting over an obstacle's footprint meets its
   // top (the altimeter of a vehicle over a desk reads the height above the desk; a tilted scan
-  // beam over it ends on it), as it is; 0 = it misses it and reads the floor. 0 is the default
-  // every exploration figure of the README was flown with: at 1 the default height filter locks
-  // itself out over furniture (README, Exploration, "Not done"; modules/exploration/EXPERIMENTS.md,
-  // "Obstacle tops seen from above"), and the figures are to be flown again with it.
-  double laser_sees_tops_from_above = 0;
+  // beam over it ends on it), as it is; 0 = it misses it and reads the floor, the model the
+  // README's exploration figures were flown with before session 58, which hid the height
+  // filter's lock-out over furniture (modules/exploration/EXPERIMENTS.md, "Obstacle tops seen
+  // from above"; host_sim/sim/configs/tops_missed.cfg).
+  double laser_sees_tops_from_above = 1;
   FacesOverStart laser_faces_over_start() const {
     return laser_sees_tops_from_above != 0 ? FacesOverStart::kMet : FacesOverStart::kMissed;
   }

@@ -32,16 +32,16 @@ struct RayHit {
 };
 
 // Whether a beam starting over (under) an obstacle's footprint meets its top (bottom) face
-// (SimConfig::laser_sees_tops_from_above): kMet is the world as it is; kMissed, the model every
-// exploration figure of the README was flown with (found in session 56), reads the floor under a
-// vehicle over a table. kMissed is the default here as in SimConfig, until those are re-flown.
+// (SimConfig::laser_sees_tops_from_above): kMet is the world as it is, the default; kMissed, the
+// model the README's exploration figures were flown with until session 58, reads the floor under
+// a vehicle over a table.
 enum class FacesOverStart : uint8_t { kMissed, kMet };
 
 class RayCaster {
  public:
   explicit RayCaster(const World& world, double cell_m = 1.0,
                      WallSurfaces walls = WallSurfaces::kCentreLines,
-                     FacesOverStart faces_over_start = FacesOverStart::kMissed);
+                     FacesOverStart faces_over_start = FacesOverStart::kMet);
 
   // `dir` need not be unit length. `railing_rng` decides railing returns; with nullptr a
   // railing returns when its probability is >= 0.5 (deterministic tests and the renderer).

@@ -15,8 +15,8 @@
 // is still over the box when the spot has left it.
 //
 // It acts only where the filter places the floor above the take-off floor, so only with its runs
-// of rejected heights on (EkfParams::altitude_relock_s > 0; in the simulator, with obstacle tops
-// seen from above, sim.laser_sees_tops_from_above); on the take-off floor the flight altitude is
+// of rejected heights on (EkfParams::altitude_relock_s > 0, the default; in the simulator, with
+// obstacle tops seen from above, its default too); on the take-off floor the flight altitude is
 // the operator's whatever the clearance. It cannot help before the altimeter is over the
 // obstacle: a body rim that meets it first is the operator's flight altitude to choose (mission
 // argument altitude_m). Home, checked at the flight altitude in 3D, is not arrived at while a

@@ -53,11 +53,11 @@ struct EkfParams {
   // would put it, however it got there (leaving a box, the side face ramps it). Otherwise the estimate
   // moved (a height that crept out of its own gate and would refuse every true reading after
   // it): the height is set from the altimeter again.
-  // Off by default: in the simulator's gt-building it cost 2 of 30 UTM-30LX flights a contact
-  // (modules/exploration/EXPERIMENTS.md, Runs of rejected heights); 0.4 s is the value flown and tested. With obstacle tops seen from above
-  // (the simulator's sim.laser_sees_tops_from_above) it is what keeps the height over furniture.
-  // To become the default with that model (modules/exploration/EXPERIMENTS.md).
-  float altitude_relock_s = 0.0f;       // s: 0 never decides (a run stays rejected until the gate widens)
+  // 0.4 s: the value flown and tested (modules/exploration/EXPERIMENTS.md, Height runs at a box's
+  // edge). 0 never decides, the filter before the runs: over furniture whose top the altimeter
+  // reads, every true height is refused until the gate widens (EXPERIMENTS, Obstacle tops seen
+  // from above).
+  float altitude_relock_s = 0.4f;       // s: 0 never decides (a run stays rejected until the gate widens)
   float altitude_step_tol_m = 0.1f;     // m: a run's steps between readings; a floor step's least jump; how far settled readings move
   float altitude_relock_vel_var = 0.25f;// (m/s)^2: added to the vertical velocity's variance at a re-lock
   // Bad input handling.
