@@ -513,12 +513,14 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     if (f.heights_rejected == 0 || !(std::fabs(iz.nu - f.run_last_nu) <= params_.altitude_step_tol_m)) {
       f.heights_rejected = 0;
       f.rejected_run_s = 0;
-      f.run_first_nu = iz.nu;
+      f.run_jumped_s = -1;
       f.run_settled_nu = iz.nu;
       f.run_settled_s = 0;
       f.run_departing = false;
     }
     f.run_last_nu = iz.nu;
+    if (f.run_jumped_s < 0 && std::fabs(iz.nu - f.last_taken_nu) > params_.altitude_step_tol_m)
+      f.run_jumped_s = f.rejected_run_s;
     bool departs = !(std::fabs(iz.nu - f.run_settled_nu) <= params_.altitude_step_tol_m);
     if (departs && f.run_departing) {
       f.run_settled_nu = f.run_departed_nu;
@@ -533,18 +535,15 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     if (f.heights_rejected < UINT8_MAX) ++f.heights_rejected;
     const bool decided = params_.altitude_relock_s > 0.0f && f.heights_rejected >= kRelockMinRejected &&
                          f.rejected_run_s >= params_.altitude_relock_s && std::isfinite(iz.nu);
-    if (!decided) {
-      if (count) ++counters_.altitude_rejected;
-      return Status::kRejected;
-    }
-    f.heights_rejected = 0;
-    // A floor step jumped: its first reading lay beyond the tolerance from the last one taken
-    // (an estimate creeping out of its gate does not), and it stayed (its readings settled at
-    // least kSettledShare of altitude_relock_s before now, and have not moved on since; entering a
-    // box, a tilted beam meets its side face first and ramps the run's first readings down to
-    // the top). Anything else is the estimate's error; so is a run met with no usable
-    // variance, which no update could weigh.
-    const bool jumped = std::fabs(f.run_first_nu - f.last_taken_nu) > params_.altitude_step_tol_m;
+    // A floor step jumped: its readings lay beyond the tolerance from the last one taken soon
+    // after it began (kJumpWithinS: an estimate creeping out of its gate does not), and it
+    // stayed (its readings settled at least kSettledShare of altitude_relock_s before now, and
+    // have not moved on since; entering a box, a tilted beam meets its side face first and ramps
+    // the run's first readings down to the top). A run that jumped and has not stayed yet is
+    // given the time to: until kSettledShare of altitude_relock_s more, then it is decided as it
+    // stands (a climb the filter does not see keeps moving). Anything else is the estimate's
+    // error; so is a run met with no usable variance, which no update could weigh.
+    const bool jumped = f.run_jumped_s >= 0.0f && f.run_jumped_s <= kJumpWithinS;
     const bool stayed = f.rejected_run_s - f.run_settled_s >= kSettledShare * params_.altitude_relock_s;
     // Over a raised floor, a run that ends where the take-off floor would put it is that floor
     // again, however it got there: leaving a box, a tilted beam meets its side face and reads
@@ -554,6 +553,13 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     // just over the tolerance high ends near where the take-off floor would put it too.
     const bool back_over_take_off_floor = f.floor_m != 0.0f && std::fabs(iz.nu) > params_.altitude_step_tol_m &&
                                           std::fabs(iz.nu - f.floor_m) <= params_.altitude_step_tol_m;
+    const bool may_yet_stay = jumped && !stayed && !back_over_take_off_floor &&
+                              f.rejected_run_s < (1.0f + kSettledShare) * params_.altitude_relock_s;
+    if (!decided || may_yet_stay) {
+      if (count) ++counters_.altitude_rejected;
+      return Status::kRejected;
+    }
+    f.heights_rejected = 0;
     if (!((jumped && stayed) || back_over_take_off_floor) || !(iz.s > 0.0f)) {
       // The estimate, not the floor, moved. The vertical velocity that carried it away is
       // suspect too, so it is loosened as well. Counted as a re-lock only, not an update.

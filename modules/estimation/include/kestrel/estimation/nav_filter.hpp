@@ -156,6 +156,11 @@ class NavFilter {
   // side face ramps the first few readings, and a climb the filter does not see (0.5 m/s moves
   // them 0.1 m in 0.2 s) keeps moving them.
   static constexpr float kSettledShare = 0.6f;
+  // A run jumped when its readings lay over altitude_step_tol_m from the last height taken
+  // within this long of its start: 0.1 m in 0.15 s is faster than the estimate creeps out of its
+  // gate (a climb it does not see at 0.5 m/s takes 0.2 s), and the altimeter's spot crossing a
+  // desk's edge slowly ramps the first readings by steps under the tolerance.
+  static constexpr float kJumpWithinS = 0.15f;
   // Plausibility bounds of the inputs (far beyond any sensor's range or indoor flight).
   static constexpr float kMaxAccelMps2 = 1000.0f;  // about 100 g
   static constexpr float kMaxGyroRadps = 100.0f;
@@ -198,7 +203,7 @@ class NavFilter {
     // slot instead of a stamp).
     float floor_m = 0;
     float rejected_run_s = 0;
-    float run_first_nu = 0;        // the run's first rejected height's innovation, m
+    float run_jumped_s = -1;       // the run's time its readings first lay over the tolerance from the last taken; < 0 not yet
     float run_last_nu = 0;         // and its latest
     float run_settled_nu = 0;      // where its readings settled: the latest over the tolerance from the settled one
     float run_settled_s = 0;       // the run's time when they settled there
