@@ -43,11 +43,11 @@ struct EkfParams {
   // A run of rejected heights: the altimeter measures the height above whatever is below, so a
   // run (readings rejected in a row, no innovation further than altitude_step_tol_m from the one before)
   // that lasts altitude_relock_s (IMU gaps included) and kRelockMinRejected readings is decided.
-  // If the readings jumped (the run's first innovation over altitude_step_tol_m from that of the
-  // last reading taken: the estimate may have moved between them) and stayed (its readings
+  // If the readings jumped (over altitude_step_tol_m from the last reading taken within
+  // NavFilter::kJumpWithinS of the run's start: faster than the estimate creeps) and stayed (its readings
   // settled, none over altitude_step_tol_m from where they had, for NavFilter::kSettledShare of
   // altitude_relock_s before the decision: at a box's edge a tilted beam meets its side face
-  // and ramps the first few), the floor moved (a box, a bench): the
+  // and ramps the first few; a run that jumped is given kSettledShare more to), the floor moved (a box, a bench): the
   // floor under the vehicle is placed again and the world height kept. So is a run over a raised
   // floor that moved over altitude_step_tol_m and ends within it of where the take-off floor
   // would put it, however it got there (leaving a box, the side face ramps it). Otherwise the estimate
