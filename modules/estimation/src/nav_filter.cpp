@@ -553,7 +553,7 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     // just over the tolerance high ends near where the take-off floor would put it too.
     const bool back_over_take_off_floor = f.floor_m != 0.0f && std::fabs(iz.nu) > params_.altitude_step_tol_m &&
                                           std::fabs(iz.nu - f.floor_m) <= params_.altitude_step_tol_m;
-    const bool may_yet_stay = jumped && !stayed && !back_over_take_off_floor &&
+    const bool may_yet_stay = jumped && !stayed && !back_over_take_off_floor && iz.s > 0.0f &&
                               f.rejected_run_s < (1.0f + kSettledShare) * params_.altitude_relock_s;
     if (!decided || may_yet_stay) {
       if (count) ++counters_.altitude_rejected;

@@ -36,7 +36,7 @@ struct ClearanceParams {
   // over gt-building's 0.75 m desks a 1.0 m flight is not raised, over its 0.9 m box by 0.15 m.
   float min_clearance_m = 0.25f;
   float max_rise_m = 0.5f;  // above the mission's set-point, at most
-  float hold_s = 2.0f;      // the rise stands this long after it was last wanted
+  float hold_s = 2.0f;      // the height kept stands this long after it was last wanted
 };
 
 Status validate(const ClearanceParams& p);

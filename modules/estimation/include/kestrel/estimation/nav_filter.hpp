@@ -204,8 +204,8 @@ class NavFilter {
     float floor_m = 0;
     float rejected_run_s = 0;
     float run_jumped_s = -1;       // the run's time its readings first lay over the tolerance from the last taken; < 0 not yet
-    float run_last_nu = 0;         // and its latest
-    float run_settled_nu = 0;      // where its readings settled: the latest over the tolerance from the settled one
+    float run_last_nu = 0;         // the run's latest rejected height's innovation, m
+    float run_settled_nu = 0;      // where its readings settled: moved by a departure over the tolerance the next reading confirmed
     float run_settled_s = 0;       // the run's time when they settled there
     // A reading over the tolerance from the settled one, not yet followed by another: a lone
     // jitter (or the deciding reading) does not move the settled point, a move does, from it.
