@@ -153,6 +153,14 @@ TEST(RayCaster, ABeamStartingOverAnObstacleMeetsItsFace) {
   EXPECT_NEAR(rc.cast({2.5, 0, 1.2}, horiz(0), 30).range_m, 7.5, 1e-9);
 }
 
+// The world as it is is the default: constructed without saying, the caster meets the top.
+TEST(RayCaster, ByDefaultABeamStartingOverAnObstacleMeetsItsTop) {
+  RayCaster rc(make("start 0 0 1 0\nbox 2.5 0 1 2 z=0:0.75\nwall 10 -20 10 20\n"));
+  const RayHit top = rc.cast({2.5, 0.3, 1.2}, Eigen::Vector3d(0, 0, -1), 30);
+  EXPECT_EQ(top.kind, RayHit::Kind::kSurface);
+  EXPECT_NEAR(top.range_m, 0.45, 1e-12);
+}
+
 // The older model (SimConfig::laser_sees_tops_from_above = 0): a beam starting over the desk
 // misses its top and reads the floor; one entering its footprint from a side still meets it.
 TEST(RayCaster, FacesOverStartMissedReadsTheFloorUnderTheVehicle) {

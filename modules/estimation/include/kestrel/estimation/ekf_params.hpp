@@ -41,24 +41,26 @@ struct EkfParams {
   float altitude_gate_chi2 = 10.83f;// 1: 1 dof, 99.9 %
   float max_correction_m = 10.0f;   // m: larger SLAM corrections are rejected
   // A run of rejected heights: the altimeter measures the height above whatever is below, so a
-  // run (readings rejected in a row, no innovation further than altitude_step_tol_m from the one before)
-  // that lasts altitude_relock_s (IMU gaps included) and kRelockMinRejected readings is decided.
-  // If the readings jumped (over altitude_step_tol_m from the last reading taken within
-  // NavFilter::kJumpWithinS of the run's start: faster than the estimate creeps) and stayed (its readings
-  // settled, none over altitude_step_tol_m from where they had, for NavFilter::kSettledShare of
-  // altitude_relock_s before the decision: at a box's edge a tilted beam meets its side face
-  // and ramps the first few; a run that jumped is given kSettledShare of altitude_relock_s more to), the floor moved (a box, a bench): the
-  // floor under the vehicle is placed again and the world height kept. So is a run over a raised
-  // floor that moved over altitude_step_tol_m and ends within it of where the take-off floor
-  // would put it, however it got there (leaving a box, the side face ramps it). Otherwise the estimate
-  // moved (a height that crept out of its own gate and would refuse every true reading after
-  // it): the height is set from the altimeter again.
+  // run (readings rejected in a row, no innovation further than altitude_step_tol_m from the one
+  // before) that lasts altitude_relock_s (IMU gaps included) and kRelockMinRejected readings is
+  // decided. If the readings jumped (over altitude_step_tol_m from the last reading taken within
+  // NavFilter::kJumpWithinS of the run's start: faster than the estimate creeps) and stayed (its
+  // readings settled, none over altitude_step_tol_m from where they had, for
+  // NavFilter::kSettledShare of altitude_relock_s before the decision: at a box's edge a tilted
+  // beam meets its side face and ramps the first few; a run that jumped is given kSettledShare of
+  // altitude_relock_s more to), the floor moved (a box, a bench): the floor under the vehicle is
+  // placed again and the world height kept. So is a run over a raised floor that moved over
+  // altitude_step_tol_m and ends within it of where the take-off floor would put it, however it
+  // got there (leaving a box, the side face ramps it). Otherwise the estimate moved (a height that
+  // crept out of its own gate and would refuse every true reading after it): the height is set
+  // from the altimeter again.
   // 0.4 s: the value flown and tested (modules/exploration/EXPERIMENTS.md, The defaults flipped,
-  // and Height runs at a box's edge). 0 never decides, the filter before the runs: over furniture whose top the altimeter
-  // reads, every true height is refused until the gate widens (EXPERIMENTS, Obstacle tops seen
-  // from above).
+  // and Height runs at a box's edge). 0 never decides, the filter before the runs: over furniture
+  // whose top the altimeter reads, every true height is refused until the gate widens
+  // (EXPERIMENTS, Obstacle tops seen from above).
   float altitude_relock_s = 0.4f;       // s: 0 never decides (a run stays rejected until the gate widens)
-  float altitude_step_tol_m = 0.1f;     // m: a run's steps between readings; a floor step's least jump; how far settled readings move
+  // m: a run's steps between readings; a floor step's least jump; how far settled readings move
+  float altitude_step_tol_m = 0.1f;
   float altitude_relock_vel_var = 0.25f;// (m/s)^2: added to the vertical velocity's variance at a re-lock
   // Bad input handling.
   float max_imu_gap_s = 0.1f;       // s: a longer IMU gap restarts the history
