@@ -18,6 +18,9 @@ namespace {
 struct PointVehicle {
   NavState nav;
   float speed = 1.0f;
+  // What stops it below, in the estimate's frame: the floor, a desk under it (0.75), or the
+  // floor where the estimate's height is off by a desk's (-0.75).
+  float surface_z = 0.0f;
   void follow(const GuidanceSetpoint& s, float dt) {
     Eigen::Vector3f target = s.position_m;
     if (s.mode == GuidanceSetpoint::Mode::kVelocity) {
@@ -27,7 +30,7 @@ struct PointVehicle {
     Eigen::Vector3f d = target - nav.position_m;
     const float max_step = speed * dt;
     if (d.norm() > max_step) d *= max_step / d.norm();
-    if (nav.position_m.z() + d.z() < 0) d.z() = -nav.position_m.z();  // the floor stops it
+    if (nav.position_m.z() + d.z() < surface_z) d.z() = surface_z - nav.position_m.z();  // it stops it
     nav.velocity_mps = d / dt;
     nav.position_m += d;
   }
@@ -48,13 +51,24 @@ struct MissionRun {
     v.nav.valid = true;
     v.nav.position_m = {1, 2, 0};
   }
+  // With `altimeter` on, every step reads the height over the surface under the vehicle, as a
+  // laser's deflected beams do: nothing nearer than `altimeter_min_m`.
+  bool altimeter = false;
+  float altimeter_min_m = 0.0f;
   GuidanceSetpoint step(const ExplorerOutput* e = nullptr) {
     t += Duration::from_s(kDt);
     v.nav.stamp = t;
-    const GuidanceSetpoint s = mc.step(t, v.nav, e);
+    const float height = v.nav.position_m.z() - v.surface_z;
+    if (altimeter && height >= altimeter_min_m) {
+      newest = {t, height, 1e-4f};
+      have_reading = true;
+    }
+    const GuidanceSetpoint s = mc.step(t, v.nav, e, nullptr, have_reading ? &newest : nullptr);
     v.follow(s, kDt);
     return s;
   }
+  AltimeterSample newest;
+  bool have_reading = false;
   // One step on an estimate other than the vehicle's (an invalid or NaN one), stamped with the
   // step's time so that only its content, not its age, is bad; the vehicle does not move.
   GuidanceSetpoint step_on(NavState nav, const ExplorerOutput* e = nullptr) {
@@ -835,6 +849,75 @@ TEST(MissionController, AnInvalidEstimateWhileLandingDoesNotCountAsTouchdown) {
   for (int i = 0; i < 40 && r.mc.phase() == Phase::kLand; ++i) (void)r.step_on(zeros);
   EXPECT_EQ(r.mc.phase(), Phase::kFailsafeLand);
   EXPECT_TRUE(r.mc.wants_armed());
+}
+
+// A hover mission flown to touchdown over `surface_z` (the estimate's frame); the height over
+// that surface when the mission called it landed, or NaN when it never did within 20 s.
+float touchdown_height(float surface_z, bool altimeter, float altimeter_min_m = 0.0f) {
+  MissionRun r;
+  r.altimeter = altimeter;
+  r.altimeter_min_m = altimeter_min_m;
+  if (!r.hover_until(Phase::kLand, 20, /*hover_s=*/1)) return -1.0f;
+  r.v.surface_z = surface_z;
+  if (!r.run_until(Phase::kLanded, 20)) return std::nanf("");
+  return r.v.nav.position_m.z() - surface_z;
+}
+
+// The estimate's height 0.75 m low (a floor step taken wrongly, iarc-arena UTM-30LX seed 25):
+// by the estimate the vehicle is down 0.55-0.87 m over the floor, where the motors were cut. The
+// altimeter says it is not; the ramp goes on down to where the readings show the floor.
+TEST(MissionController, AnEstimateLowByADeskLandsOnTheFloorByTheAltimeter) {
+  EXPECT_LT(touchdown_height(-0.75f, /*altimeter=*/true), 0.12f);
+  // By the estimate alone: down when its ramp stops 0.2 m under the floor it believes in.
+  EXPECT_NEAR(touchdown_height(-0.75f, /*altimeter=*/false), 0.55f, 0.01f);
+}
+
+// Coming down on a desk, the estimate right: its height never goes under landed_altitude_m,
+// but the altimeter reads the vehicle down on the desk.
+TEST(MissionController, ComingDownOnADeskLandsOnIt) {
+  EXPECT_LT(touchdown_height(0.75f, /*altimeter=*/true), 0.12f);
+  EXPECT_TRUE(std::isnan(touchdown_height(0.75f, /*altimeter=*/false)));  // by the estimate: never
+}
+
+// A UTM-30LX's deflected beams read nothing nearer than 0.1 m: readings under the landed height
+// and then none are the ground, and the floor is met as without an altimeter.
+TEST(MissionController, AnAltimeterFallingSilentNearTheFloorStillLands) {
+  EXPECT_LT(touchdown_height(0.0f, /*altimeter=*/true, /*altimeter_min_m=*/0.1f), 0.12f);
+  EXPECT_LT(touchdown_height(0.0f, /*altimeter=*/true), 0.12f);
+  EXPECT_LT(touchdown_height(0.0f, /*altimeter=*/false), 0.12f);
+}
+
+// One reading under the landed height (a beam on the edge of something passed over) is not
+// touchdown; the next, over it again, says airborne.
+TEST(MissionController, OneLowReadingInTheAirIsNotTouchdown) {
+  MissionRun r;
+  r.altimeter = true;
+  ASSERT_TRUE(r.hover_until(Phase::kLand, 20, /*hover_s=*/1));
+  ASSERT_GT(r.v.nav.position_m.z(), 0.8f);
+  r.v.surface_z = r.v.nav.position_m.z() - 0.05f;  // for one step something is 5 cm under it
+  r.step();
+  r.v.surface_z = 0.0f;
+  for (int i = 0; i < 10; ++i) {
+    r.step();
+    ASSERT_EQ(r.mc.phase(), Phase::kLand) << "step " << i;
+  }
+  ASSERT_TRUE(r.run_until(Phase::kLanded, 20));
+  EXPECT_LT(r.v.nav.position_m.z(), 0.12f);
+}
+
+// The failsafe descends on a timer because the estimate may be what failed; the altimeter
+// reading the vehicle down ends it at touchdown, not when the timer runs out.
+TEST(MissionController, TheFailsafeLandsWhenTheAltimeterReadsTheGround) {
+  MissionRun r;
+  r.altimeter = true;
+  ASSERT_TRUE(r.hover_until(Phase::kHover, 10));
+  r.v.nav.valid = false;  // the vehicle still follows the set-points: its height is the truth
+  ASSERT_TRUE(r.run_until(Phase::kFailsafeLand, 1.0f));
+  const TimeUs failed = r.t;
+  ASSERT_TRUE(r.run_until(Phase::kLanded, 20));
+  EXPECT_LT(r.v.nav.position_m.z(), 0.12f);
+  const MissionParams p;
+  EXPECT_LT((r.t - failed).seconds(), p.takeoff_altitude_m / p.descent_rate_mps + 1.0);
 }
 
 // An estimate gone NaN on the way home: the set-point keeps the last position believed and

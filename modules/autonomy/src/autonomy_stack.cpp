@@ -238,6 +238,8 @@ void AutonomyStack::imu_task(TimeUs now) {
     while (dev_.altimeter->poll(a) == Status::kOk) {
       ++counters_.altitude_samples;
       (void)filter_.update_altitude(a);  // rejections are counted by the filter
+      newest_altitude_ = a;
+      have_altitude_ = true;
     }
   }
   nav_ = filter_.state();
@@ -304,7 +306,7 @@ void AutonomyStack::guidance_task(TimeUs now) {
   // On the way home it may leave its trail where the newest scan, if recent, shows the way clear.
   const bool scan_recent = ReturnVelocityBound::recent(now, dev_.laser.geometry().scan_period, newest_scan_);
   setpoint_ = mission_.step(now, watchdog_.for_mission(nav_), explorer_ != nullptr ? &explorer_out_ : nullptr,
-                            scan_recent ? &newest_scan_ : nullptr);
+                            scan_recent ? &newest_scan_ : nullptr, have_altitude_ ? &newest_altitude_ : nullptr);
   // Flying home and landing there, the explorer's approach limiter bounds the mission's
   // velocity set-point against the newest scan, matched or not (return_velocity_bound.hpp).
   const bool homing = mission_.phase() == mission::Phase::kReturn || mission_.phase() == mission::Phase::kLand;

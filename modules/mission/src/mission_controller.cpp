@@ -47,6 +47,8 @@ constexpr float kMaxScanAgeS = 0.5f;
 // Landing at home after exploring, the estimate moved this far from home (a home
 // re-localisation's fix): fly home again, facing the way, rather than sidle there descending.
 constexpr float kRehomeM = 0.6f;
+// Landing: the set-point ramp ends this far under the floor, so that the vehicle settles on it.
+constexpr float kSettleBelowFloorM = 0.2f;
 // The most one step advances the mission's clock (timers): see step().
 constexpr Duration kMaxClockStep = Duration::from_us(1'000'000);
 // Laying the trail back onto the scan (trail_alignment.hpp): a breadcrumb counts where it is
@@ -121,10 +123,24 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
 }
 
 void MissionController::enter(Phase p, TimeUs now) {
+  if (p != phase_ && (p == Phase::kLand || p == Phase::kFailsafeLand)) touchdown_.reset();
   phase_ = p;
   phase_start_ = now;
   const auto i = static_cast<std::size_t>(p);
   if (!first_entered_at_[i]) first_entered_at_[i] = now;
+}
+
+void MissionController::descend(const NavState& nav, bool estimate_ok, float dt) {
+  // Aim below the floor, so that the vehicle settles on it: the take-off floor, or lower where
+  // the altimeter shows the floor lower than the estimate puts it (its height off: landing by
+  // it, the vehicle would hover over the floor). Never higher: a desk under the vehicle is met
+  // on the way down. Once at its aim the ramp holds there; it never climbs back.
+  float aim = -kSettleBelowFloorM;
+  if (estimate_ok) {
+    if (const std::optional<float> floor = touchdown_.floor_under(nav.position_m.z()))
+      aim = std::min(aim, *floor - kSettleBelowFloorM);
+  }
+  ramp_z_ = std::max(ramp_z_ - params_.descent_rate_mps * dt, std::min(ramp_z_, aim));
 }
 
 bool MissionController::first_entered(Phase p, TimeUs& at) const {
@@ -149,7 +165,8 @@ GuidanceSetpoint MissionController::hold(TimeUs now, const Eigen::Vector3f& p, f
 }
 
 GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer,
-                                         const LaserScan* scan) {
+                                         const LaserScan* scan, const AltimeterSample* altitude) {
+  touchdown_.observe(now, altitude, params_.landed_altitude_m, params_.estimate_timeout_s);
   const bool estimate_ok = nav.valid && nav.position_m.allFinite() && nav.velocity_mps.allFinite() &&
                            std::isfinite(nav.heading_rad);
   // The ramps integrate time between steps; a long gap (a stalled loop) must not make the
@@ -376,11 +393,13 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
         hold_heading_ = wrap_angle(hold_heading_ + turn);
         survey_left_rad_ -= turn;
       } else {
-        ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);  // aim below the floor to settle
+        descend(nav, estimate_ok, dt);
       }
       // Touchdown only on an estimate believed: an invalid one (zeros before the filter runs)
-      // must not stop the motors in the air; if it lasts, the failsafe lands on a timer.
-      if (estimate_ok && nav.position_m.z() < params_.landed_altitude_m && std::fabs(nav.velocity_mps.z()) < 0.2f)
+      // must not stop the motors in the air; if it lasts, the failsafe lands on a timer. The
+      // altimeter, when it has spoken, says whether the vehicle is down (touchdown_sense.hpp).
+      if (estimate_ok && std::fabs(nav.velocity_mps.z()) < 0.2f &&
+          touchdown_.on_ground().value_or(nav.position_m.z() < params_.landed_altitude_m))
         enter(Phase::kLanded, t);
       GuidanceSetpoint s = hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
       if (kind_ != MissionKind::kExplore) return s;
@@ -398,11 +417,11 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       GuidanceSetpoint s;
       s.stamp = now;
       s.mode = GuidanceSetpoint::Mode::kVelocity;
-      ramp_z_ = std::max(-0.2f, ramp_z_ - params_.descent_rate_mps * dt);
+      descend(nav, estimate_ok, dt);
       s.position_m = {last_position_.x(), last_position_.y(), ramp_z_};
       s.heading_rad = hold_heading_;
       const float fall_time = params_.takeoff_altitude_m / params_.descent_rate_mps + 3.0f;
-      if ((estimate_ok && nav.position_m.z() < params_.landed_altitude_m) ||
+      if (touchdown_.on_ground().value_or(estimate_ok && nav.position_m.z() < params_.landed_altitude_m) ||
           (t - phase_start_).seconds() > fall_time)
         enter(Phase::kLanded, t);
       return s;

@@ -39,6 +39,7 @@
 #include "kestrel/core/static_vector.hpp"
 #include "kestrel/core/status.hpp"
 #include "kestrel/mission/breadcrumb_trail.hpp"
+#include "kestrel/mission/touchdown_sense.hpp"
 
 namespace kestrel::mission {
 
@@ -62,7 +63,9 @@ struct MissionParams {
   float takeoff_altitude_m = 1.0f;     // flight altitude above the floor
   float climb_rate_mps = 0.5f;         // set-point ramp during take-off
   float descent_rate_mps = 0.3f;       // set-point ramp during landing
-  float landed_altitude_m = 0.12f;     // below this, and slow, the vehicle has landed
+  // Below this, and slow, the vehicle has landed: by the altimeter's readings when it gives
+  // them (touchdown_sense.hpp), by the estimate's height when it does not.
+  float landed_altitude_m = 0.12f;
   float hover_duration_s = 60.0f;      // hover mission: time at the set-point
   float arrive_radius_m = 0.15f;       // a set-point is reached within this distance...
   float arrive_speed_mps = 0.2f;       // ...and below this speed
@@ -118,9 +121,11 @@ class MissionController {
 
   // One guidance step: the set-point to fly now. `explorer` is read only in the explore phase,
   // `scan` (the newest, its laser at the vehicle's origin; nullptr: none recent) only on the way
-  // home, its pose the estimate's carried back to when it was taken.
+  // home, its pose the estimate's carried back to when it was taken. `altitude` is the
+  // altimeter's newest reading (nullptr: none; stamped on now's clock, older than
+  // estimate_timeout_s it is stale): landing, it says when the vehicle is down.
   GuidanceSetpoint step(TimeUs now, const NavState& nav, const ExplorerOutput* explorer,
-                        const LaserScan* scan = nullptr);
+                        const LaserScan* scan = nullptr, const AltimeterSample* altitude = nullptr);
 
   // The estimate was corrected late: its path from `since` (the estimate's time) on moved by
   // `delta` (NavFilter::frame_correction() after * before^-1). The breadcrumbs recorded since
@@ -160,6 +165,8 @@ class MissionController {
   // lands where the home re-localisation searches.
   bool landing_after_flight_home() const { return returned_home_ || stall_surveyed_; }
   bool arrived(const NavState& nav, const Eigen::Vector3f& target) const;
+  // Landing: moves the height set-point ramp down at the descent rate to its aim below the floor.
+  void descend(const NavState& nav, bool estimate_ok, float dt);
   GuidanceSetpoint hold(TimeUs now, const Eigen::Vector3f& p, float heading) const;
   // Flying home and landing there: the horizontal velocity towards a point `offset` away, at
   // the return speed until one second from it, then in proportion (arrived at, not overflown).
@@ -194,6 +201,7 @@ class MissionController {
   float hold_heading_ = 0;
   float survey_left_rad_ = 0;  // of the take-off or the home survey turn
   float ramp_z_ = 0;
+  TouchdownSense touchdown_;  // the altimeter's readings since the landing began
   std::size_t waypoint_index_ = 0;
   TimeUs arrived_at_;
   bool at_waypoint_ = false;
