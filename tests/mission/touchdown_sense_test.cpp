@@ -42,48 +42,58 @@ TEST(TouchdownSense, ARecentReadingOverTheLandedHeightIsAirborneAndAStaleOneIsNo
   EXPECT_FALSE(s.t.floor_under(0.5f).has_value());
 }
 
-TEST(TouchdownSense, TwoLowReadingsInARowAreTouchdownOneIsNot) {
+// Low readings are touchdown once they have held still (within kStillM) for kStillS: one alone
+// is not, nor are low readings still descending (0.3 m/s: 0.03 m in 0.1 s, at 40 Hz).
+TEST(TouchdownSense, LowReadingsHeldStillAreTouchdownOneOrMovingOnesAreNot) {
   Sense s;
   s.read(1.0, 0.05f);
   EXPECT_FALSE(s.t.on_ground().has_value());
   s.read(1.1, 0.3f);  // over it again: the run starts over
   EXPECT_EQ(s.t.on_ground(), std::optional<bool>(false));
-  s.read(1.2, 0.05f);
-  EXPECT_FALSE(s.t.on_ground().has_value());
-  s.read(1.3, 0.04f);
+  for (int i = 0; i < 4; ++i) {  // descending at 0.3 m/s, 25 ms apart
+    s.read(1.2 + 0.025 * i, 0.11f - 0.0075f * static_cast<float>(i));
+    EXPECT_FALSE(s.t.on_ground().has_value()) << i;
+  }
+  s.read(1.3, 0.08f);
+  EXPECT_FALSE(s.t.on_ground().has_value());  // 0.03 m over the last 0.1 s: moving
+  s.read(1.35, 0.075f);
+  EXPECT_FALSE(s.t.on_ground().has_value());  // within 0.02 m since 1.275 s: still, but for 0.075 s
+  s.read(1.4, 0.079f);
   EXPECT_EQ(s.t.on_ground(), std::optional<bool>(true));
 }
 
 // Readings that stop after reading the vehicle down (under the laser's minimum range) leave it
-// on the ground, however long the silence.
+// on the ground, however long the silence; a reading over the landed height ends it.
 TEST(TouchdownSense, SilenceAfterTouchdownStaysOnTheGround) {
   Sense s;
-  s.read(1.0, 0.08f);
-  s.read(1.1, 0.06f);
+  s.read(1.0, 0.006f);
+  s.read(1.1, -0.001f);  // the floor's noise reads a little under it
   s.silent(60.0);
   EXPECT_EQ(s.t.on_ground(), std::optional<bool>(true));
+  s.read(60.1, 0.5f);
+  EXPECT_EQ(s.t.on_ground(), std::optional<bool>(false));
 }
 
 TEST(TouchdownSense, TheSameReadingGivenAgainCountsOnce) {
   Sense s;
   const AltimeterSample r = reading(1.0, 0.05f);
-  for (int i = 0; i < 5; ++i) s.t.observe(at(1.0 + 0.01 * i), &r, kLandedM, kMaxAgeS);
+  for (int i = 0; i < 20; ++i) s.t.observe(at(1.0 + 0.01 * i), &r, kLandedM, kMaxAgeS);
   EXPECT_FALSE(s.t.on_ground().has_value());
-  const AltimeterSample older = reading(0.9, 0.05f);
-  s.t.observe(at(1.1), &older, kLandedM, kMaxAgeS);
+  const AltimeterSample older = reading(0.8, 0.05f);
+  s.t.observe(at(1.3), &older, kLandedM, kMaxAgeS);
   EXPECT_FALSE(s.t.on_ground().has_value());
 }
 
 TEST(TouchdownSense, ReadingsOutOfReasonAreIgnored) {
   Sense s;
-  for (const float bad : {std::nanf(""), std::numeric_limits<float>::infinity(), -0.01f,
+  for (const float bad : {std::nanf(""), std::numeric_limits<float>::infinity(), TouchdownSense::kMinHeightM - 0.1f,
                           TouchdownSense::kMaxHeightM + 1.0f}) {
     s.read(1.0, bad);
     EXPECT_FALSE(s.t.on_ground().has_value()) << bad;
   }
   s.read(1.1, 0.05f);
-  s.read(1.2, -1.0f);  // ignored: it neither counts nor breaks the run
-  s.read(1.3, 0.05f);
+  s.read(1.15, -1.0f);  // ignored: it neither counts nor breaks the run
+  s.read(1.2, 0.05f);
   EXPECT_EQ(s.t.on_ground(), std::optional<bool>(true));
 }
 
@@ -99,6 +109,7 @@ TEST(TouchdownSense, ResetForgetsEverything) {
   Sense s;
   s.read(1.0, 0.05f);
   s.read(1.1, 0.05f);
+  ASSERT_EQ(s.t.on_ground(), std::optional<bool>(true));
   s.t.reset();
   EXPECT_FALSE(s.t.on_ground().has_value());
   s.read(1.2, 0.05f);

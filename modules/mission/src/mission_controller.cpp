@@ -397,9 +397,10 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       }
       // Touchdown only on an estimate believed: an invalid one (zeros before the filter runs)
       // must not stop the motors in the air; if it lasts, the failsafe lands on a timer. The
-      // altimeter, when it has spoken, says whether the vehicle is down (touchdown_sense.hpp).
-      if (estimate_ok && std::fabs(nav.velocity_mps.z()) < 0.2f &&
-          touchdown_.on_ground().value_or(nav.position_m.z() < params_.landed_altitude_m))
+      // altimeter, when it has spoken, says whether the vehicle is down and still
+      // (touchdown_sense.hpp); otherwise the estimate's height and vertical speed do.
+      if (estimate_ok && touchdown_.on_ground().value_or(nav.position_m.z() < params_.landed_altitude_m &&
+                                                         std::fabs(nav.velocity_mps.z()) < 0.2f))
         enter(Phase::kLanded, t);
       GuidanceSetpoint s = hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
       if (kind_ != MissionKind::kExplore) return s;
