@@ -10,6 +10,8 @@ namespace {
 
 constexpr float kLandedM = 0.12f;
 constexpr float kMaxAgeS = 0.5f;
+const std::optional<bool> kDown(true);
+const std::optional<bool> kNotDown(false);
 
 TimeUs at(double s) { return TimeUs{} + Duration::from_s(s); }
 
@@ -28,38 +30,38 @@ TEST(TouchdownSense, WithoutAReadingItHasNoVerdict) {
   Sense s;
   s.silent(1.0);
   EXPECT_FALSE(s.t.on_ground().has_value());
-  EXPECT_FALSE(s.t.floor_under(1.0f).has_value());
+  EXPECT_FALSE(s.t.floor_under(1.0f, 0.0f).has_value());
 }
 
 TEST(TouchdownSense, ARecentReadingOverTheLandedHeightIsAirborneAndAStaleOneIsNothing) {
   Sense s;
   s.read(1.0, 0.5f);
-  EXPECT_EQ(s.t.on_ground(), std::optional<bool>(false));
+  EXPECT_EQ(s.t.on_ground(), kNotDown);
   s.silent(1.0 + kMaxAgeS);
-  EXPECT_EQ(s.t.on_ground(), std::optional<bool>(false));
+  EXPECT_EQ(s.t.on_ground(), kNotDown);
   s.silent(1.01 + kMaxAgeS);
   EXPECT_FALSE(s.t.on_ground().has_value());
-  EXPECT_FALSE(s.t.floor_under(0.5f).has_value());
+  EXPECT_FALSE(s.t.floor_under(0.5f, 0.0f).has_value());
 }
 
 // Low readings are touchdown once they have held still (within kStillM) for kStillS: one alone
-// is not, nor are low readings still descending (0.3 m/s: 0.03 m in 0.1 s, at 40 Hz).
+// is not yet, nor are low readings still descending (0.3 m/s: 0.03 m in 0.1 s, at 40 Hz).
 TEST(TouchdownSense, LowReadingsHeldStillAreTouchdownOneOrMovingOnesAreNot) {
   Sense s;
   s.read(1.0, 0.05f);
-  EXPECT_FALSE(s.t.on_ground().has_value());
+  EXPECT_EQ(s.t.on_ground(), kNotDown);
   s.read(1.1, 0.3f);  // over it again: the run starts over
-  EXPECT_EQ(s.t.on_ground(), std::optional<bool>(false));
+  EXPECT_EQ(s.t.on_ground(), kNotDown);
   for (int i = 0; i < 4; ++i) {  // descending at 0.3 m/s, 25 ms apart
     s.read(1.2 + 0.025 * i, 0.11f - 0.0075f * static_cast<float>(i));
-    EXPECT_FALSE(s.t.on_ground().has_value()) << i;
+    EXPECT_EQ(s.t.on_ground(), kNotDown) << i;
   }
   s.read(1.3, 0.08f);
-  EXPECT_FALSE(s.t.on_ground().has_value());  // 0.03 m over the last 0.1 s: moving
+  EXPECT_EQ(s.t.on_ground(), kNotDown);  // 0.03 m over the last 0.1 s: moving
   s.read(1.35, 0.075f);
-  EXPECT_FALSE(s.t.on_ground().has_value());  // within 0.02 m since 1.275 s: still, but for 0.075 s
+  EXPECT_EQ(s.t.on_ground(), kNotDown);  // within 0.02 m since 1.275 s: still, but for 0.075 s
   s.read(1.4, 0.079f);
-  EXPECT_EQ(s.t.on_ground(), std::optional<bool>(true));
+  EXPECT_EQ(s.t.on_ground(), kDown);
 }
 
 // Readings that stop after reading the vehicle down (under the laser's minimum range) leave it
@@ -69,51 +71,103 @@ TEST(TouchdownSense, SilenceAfterTouchdownStaysOnTheGround) {
   s.read(1.0, 0.006f);
   s.read(1.1, -0.001f);  // the floor's noise reads a little under it
   s.silent(60.0);
-  EXPECT_EQ(s.t.on_ground(), std::optional<bool>(true));
+  EXPECT_EQ(s.t.on_ground(), kDown);
   s.read(60.1, 0.5f);
-  EXPECT_EQ(s.t.on_ground(), std::optional<bool>(false));
+  EXPECT_EQ(s.t.on_ground(), kNotDown);
 }
 
-TEST(TouchdownSense, TheSameReadingGivenAgainCountsOnce) {
+// A reading given again (the same stamp) or an older one is not a new reading: an old one over
+// the landed height would otherwise say airborne.
+TEST(TouchdownSense, TheSameReadingGivenAgainOrAnOlderOneIsIgnored) {
   Sense s;
-  const AltimeterSample r = reading(1.0, 0.05f);
-  for (int i = 0; i < 20; ++i) s.t.observe(at(1.0 + 0.01 * i), &r, kLandedM, kMaxAgeS);
-  EXPECT_FALSE(s.t.on_ground().has_value());
-  const AltimeterSample older = reading(0.8, 0.05f);
-  s.t.observe(at(1.3), &older, kLandedM, kMaxAgeS);
-  EXPECT_FALSE(s.t.on_ground().has_value());
+  s.read(1.0, 0.05f);
+  s.read(1.1, 0.05f);
+  ASSERT_EQ(s.t.on_ground(), kDown);
+  const AltimeterSample older = reading(0.8, 0.5f);
+  s.t.observe(at(1.2), &older, kLandedM, kMaxAgeS);
+  EXPECT_EQ(s.t.on_ground(), kDown);
+  const AltimeterSample again = reading(1.1, 0.5f);
+  s.t.observe(at(1.2), &again, kLandedM, kMaxAgeS);
+  EXPECT_EQ(s.t.on_ground(), kDown);
 }
 
-TEST(TouchdownSense, ReadingsOutOfReasonAreIgnored) {
+TEST(TouchdownSense, ReadingsOutOfReasonGiveNoVerdict) {
   Sense s;
+  double t = 1.0;
   for (const float bad : {std::nanf(""), std::numeric_limits<float>::infinity(), TouchdownSense::kMinHeightM - 0.1f,
                           TouchdownSense::kMaxHeightM + 1.0f}) {
-    s.read(1.0, bad);
+    s.read(t, bad);
+    t += 0.05;
     EXPECT_FALSE(s.t.on_ground().has_value()) << bad;
   }
-  s.read(1.1, 0.05f);
-  s.read(1.15, -1.0f);  // ignored: it neither counts nor breaks the run
-  s.read(1.2, 0.05f);
-  EXPECT_EQ(s.t.on_ground(), std::optional<bool>(true));
+  s.read(t, 0.5f);
+  EXPECT_EQ(s.t.on_ground(), kNotDown);
+  s.read(t + 0.05, std::nanf(""));  // not a height: the airborne reading stands
+  EXPECT_EQ(s.t.on_ground(), kNotDown);
 }
 
-TEST(TouchdownSense, TheFloorUnderIsTheEstimatedHeightLessTheReading) {
+// The floor under an airborne reading: the estimated height carried back to the reading's stamp
+// at the estimated vertical speed, less the reading; none from a low or a stale reading.
+TEST(TouchdownSense, TheFloorUnderIsTheEstimatedHeightAtTheReadingLessTheReading) {
   Sense s;
-  s.read(1.0, 0.8f);
-  ASSERT_TRUE(s.t.floor_under(0.05f).has_value());
-  EXPECT_NEAR(*s.t.floor_under(0.05f), -0.75f, 1e-6f);
-  EXPECT_FALSE(s.t.floor_under(std::nanf("")).has_value());
+  const AltimeterSample r = reading(1.0, 0.8f);
+  s.t.observe(at(1.0), &r, kLandedM, kMaxAgeS);
+  ASSERT_TRUE(s.t.floor_under(0.05f, 0.0f).has_value());
+  EXPECT_NEAR(*s.t.floor_under(0.05f, 0.0f), -0.75f, 1e-6f);
+  // 0.1 s later, descending at 0.3 m/s: the estimate then stood 0.03 m higher.
+  s.t.observe(at(1.1), nullptr, kLandedM, kMaxAgeS);
+  EXPECT_NEAR(*s.t.floor_under(0.02f, -0.3f), -0.75f, 1e-5f);
+  EXPECT_FALSE(s.t.floor_under(std::nanf(""), 0.0f).has_value());
+  EXPECT_FALSE(s.t.floor_under(0.05f, std::nanf("")).has_value());
+  s.t.observe(at(1.0 + kMaxAgeS + 0.01), nullptr, kLandedM, kMaxAgeS);
+  EXPECT_FALSE(s.t.floor_under(0.05f, 0.0f).has_value());
+  s.read(2.0, 0.05f);
+  EXPECT_FALSE(s.t.floor_under(0.05f, 0.0f).has_value());
+}
+
+// At the URG-04LX's 10 Hz with a few millimetres of noise: on the floor, touchdown at the
+// second reading; descending at 0.3 m/s, never.
+TEST(TouchdownSense, TenHertzNoisyReadingsOnTheFloorAndDescending) {
+  const float noise[] = {0.004f, -0.003f, 0.005f, -0.004f, 0.002f};
+  Sense floor;
+  floor.read(1.0, 0.003f + noise[0]);
+  EXPECT_EQ(floor.t.on_ground(), kNotDown);
+  for (int i = 1; i < 5; ++i) {
+    floor.read(1.0 + 0.1 * i, 0.003f + noise[i]);
+    EXPECT_EQ(floor.t.on_ground(), kDown) << i;
+  }
+  Sense descending;
+  for (int i = 0; i < 4; ++i) {
+    descending.read(1.0 + 0.1 * i, 0.11f - 0.03f * static_cast<float>(i) + noise[i]);
+    EXPECT_EQ(descending.t.on_ground(), kNotDown) << i;
+  }
+}
+
+// A gap between two low readings, or a reading out of reason between them, says nothing of what
+// the vehicle did meanwhile: the run starts again.
+TEST(TouchdownSense, AGapOrAnUnusableReadingStartsTheRunAgain) {
+  Sense gap;
+  gap.read(1.0, 0.05f);
+  gap.read(1.0 + TouchdownSense::kMaxGapS + 0.01, 0.05f);
+  EXPECT_EQ(gap.t.on_ground(), kNotDown);
+  gap.read(1.1 + TouchdownSense::kMaxGapS + 0.01, 0.05f);
+  EXPECT_EQ(gap.t.on_ground(), kDown);
+  Sense garbage;
+  garbage.read(1.0, 0.05f);
+  garbage.read(1.05, std::nanf(""));
+  garbage.read(1.1, 0.05f);
+  EXPECT_EQ(garbage.t.on_ground(), kNotDown);
 }
 
 TEST(TouchdownSense, ResetForgetsEverything) {
   Sense s;
   s.read(1.0, 0.05f);
   s.read(1.1, 0.05f);
-  ASSERT_EQ(s.t.on_ground(), std::optional<bool>(true));
+  ASSERT_EQ(s.t.on_ground(), kDown);
   s.t.reset();
   EXPECT_FALSE(s.t.on_ground().has_value());
   s.read(1.2, 0.05f);
-  EXPECT_FALSE(s.t.on_ground().has_value());
+  EXPECT_EQ(s.t.on_ground(), kNotDown);
 }
 
 }  // namespace

@@ -137,7 +137,7 @@ void MissionController::descend(const NavState& nav, bool estimate_ok, float dt)
   // on the way down. Once at its aim the ramp holds there; it never climbs back.
   float aim = -kSettleBelowFloorM;
   if (estimate_ok) {
-    if (const std::optional<float> floor = touchdown_.floor_under(nav.position_m.z()))
+    if (const std::optional<float> floor = touchdown_.floor_under(nav.position_m.z(), nav.velocity_mps.z()))
       aim = std::min(aim, *floor - kSettleBelowFloorM);
   }
   ramp_z_ = std::max(ramp_z_ - params_.descent_rate_mps * dt, std::min(ramp_z_, aim));

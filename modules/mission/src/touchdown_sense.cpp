@@ -8,44 +8,56 @@ namespace kestrel::mission {
 void TouchdownSense::reset() { *this = TouchdownSense{}; }
 
 void TouchdownSense::observe(TimeUs now, const AltimeterSample* newest, float landed_height_m, float max_age_s) {
-  const bool usable = newest != nullptr && std::isfinite(newest->height_m) && newest->height_m >= kMinHeightM &&
-                      newest->height_m <= kMaxHeightM;
-  if (usable && (!seen_ || newest->stamp > last_stamp_)) take(*newest, landed_height_m);
+  if (newest != nullptr && (!counted_any_ || newest->stamp > counted_stamp_)) {
+    counted_any_ = true;
+    counted_stamp_ = newest->stamp;
+    const bool usable = std::isfinite(newest->height_m) && newest->height_m >= kMinHeightM &&
+                        newest->height_m <= kMaxHeightM;
+    if (usable) {
+      take(*newest, landed_height_m);
+    } else {
+      in_run_ = false;  // it ends a run of low readings
+    }
+  }
   // A reading stamped ahead of now (clocks a little apart) is as recent as one stamped now.
-  recent_ = seen_ && (now - last_stamp_).seconds() <= static_cast<double>(max_age_s);
+  age_s_ = seen_ ? std::max(0.0f, static_cast<float>((now - last_stamp_).seconds())) : 0.0f;
+  recent_ = seen_ && age_s_ <= max_age_s;
 }
 
 void TouchdownSense::take(const AltimeterSample& r, float landed_height_m) {
-  const bool was_low = seen_ && low_;
+  const bool continues = in_run_ && (r.stamp - last_stamp_).seconds() <= static_cast<double>(kMaxGapS);
   seen_ = true;
   last_stamp_ = r.stamp;
   last_height_m_ = r.height_m;
   low_ = r.height_m < landed_height_m;
   if (!low_) {
+    in_run_ = false;
     down_ = false;
     return;
   }
   const float lo = std::min(still_min_m_, r.height_m);
   const float hi = std::max(still_max_m_, r.height_m);
-  if (!was_low || hi - lo > kStillM) {
+  if (!continues || hi - lo > kStillM) {
     still_since_ = r.stamp;  // the run starts again at this reading
     still_min_m_ = still_max_m_ = r.height_m;
   } else {
     still_min_m_ = lo;
     still_max_m_ = hi;
   }
+  in_run_ = true;
   down_ = down_ || (r.stamp - still_since_).seconds() >= static_cast<double>(kStillS);
 }
 
 std::optional<bool> TouchdownSense::on_ground() const {
   if (down_) return true;
-  if (seen_ && recent_ && !low_) return false;
+  if (recent_) return false;  // over the height, or low and not yet still: not down yet
   return std::nullopt;
 }
 
-std::optional<float> TouchdownSense::floor_under(float estimated_height_m) const {
-  if (!recent_ || !std::isfinite(estimated_height_m)) return std::nullopt;
-  return estimated_height_m - last_height_m_;
+std::optional<float> TouchdownSense::floor_under(float estimated_height_m, float vertical_speed_mps) const {
+  if (!recent_ || low_ || !std::isfinite(estimated_height_m) || !std::isfinite(vertical_speed_mps))
+    return std::nullopt;
+  return estimated_height_m - vertical_speed_mps * age_s_ - last_height_m_;
 }
 
 }  // namespace kestrel::mission

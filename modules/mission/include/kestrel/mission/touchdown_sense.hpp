@@ -7,19 +7,19 @@
 // under the vehicle, which is where it touches down.
 //
 // Its verdict, from the readings since reset():
-//  - airborne: the newest reading is recent and at or over the landed height;
-//  - on the ground: readings under it have stayed within kStillM of one another for kStillS
-//    (the vehicle stopped: the filter's vertical velocity does not see the stop at once, the
-//    impact being too short for its IMU, and its height runs on under the floor until its
-//    readings re-lock it), and none over it since, recent or not (a laser's deflected beams read
-//    nothing nearer than its minimum range: the UTM-30LX's 0.1 m is more than its 0.08 m mount
-//    height, so on the ground it falls silent);
-//  - none (nullopt): no reading, a stale one over the height, or low ones not yet still long
-//    enough; the caller then goes by the estimate.
+//  - not down: the newest reading is recent, and over the landed height or not yet still;
+//  - on the ground: readings under it, each within kMaxGapS of the one before, have stayed within
+//    kStillM of one another for kStillS (the vehicle stopped: the filter's vertical velocity does
+//    not see the stop at once, the impact being too short for its IMU, and its height runs on
+//    under the floor until its readings re-lock it), and none over it since, recent or not (a
+//    laser's deflected beams read nothing nearer than its minimum range: silence after the
+//    vehicle was read still on the floor is the floor);
+//  - none (nullopt): no reading, or the newest stale: the caller then goes by the estimate. The
+//    UTM-30LX, whose 0.1 m minimum range is more than its 0.08 m mount height, falls silent while
+//    still descending: its landings are the estimate's.
 // A reading counts once (by its stamp; one not newer than the last is ignored), and only a
-// usable one: finite, its height in [kMinHeightM, kMaxHeightM] (on the floor the noise reads a
-// few millimetres under it). Recent: now - stamp <= max_age_s.
-#include <cstdint>
+// usable one: finite, its height in [kMinHeightM, kMaxHeightM]; one that is not ends a run of low
+// readings. Recent: now - stamp <= max_age_s.
 #include <optional>
 
 #include "kestrel/core/messages.hpp"
@@ -29,10 +29,14 @@ namespace kestrel::mission {
 class TouchdownSense {
  public:
   // Still: descending at the landing's 0.3 m/s, readings 0.1 s apart move 0.03 m. kStillS is
-  // two readings of a 10 Hz altimeter (the URG-04LX's), give or take their jitter.
+  // two readings of a 10 Hz altimeter (the URG-04LX's), give or take their jitter; a longer gap
+  // between two readings says nothing of what the vehicle did in it.
   static constexpr float kStillM = 0.02f;
   static constexpr float kStillS = 0.09f;
-  static constexpr float kMinHeightM = -0.5f;
+  static constexpr float kMaxGapS = 0.15f;
+  // On the floor a reading is the mount's height less its calibration, a few millimetres either
+  // side of zero; one further under the floor than this is not a height.
+  static constexpr float kMinHeightM = -0.1f;
   static constexpr float kMaxHeightM = 20.0f;
 
   void reset();
@@ -41,24 +45,29 @@ class TouchdownSense {
   void observe(TimeUs now, const AltimeterSample* newest, float landed_height_m, float max_age_s);
 
   std::optional<bool> on_ground() const;
-  // The floor under the vehicle in the estimate's frame (height minus the newest reading), while
-  // that reading is recent.
-  std::optional<float> floor_under(float estimated_height_m) const;
+  // The floor under the vehicle in the estimate's frame while the newest reading is recent and
+  // says airborne: the estimated height carried back to the reading's stamp at the estimated
+  // vertical speed, less the reading.
+  std::optional<float> floor_under(float estimated_height_m, float vertical_speed_mps) const;
 
  private:
   void take(const AltimeterSample& r, float landed_height_m);
 
-  bool seen_ = false;      // a usable reading since reset()
-  TimeUs last_stamp_;      // of the newest usable reading
+  bool counted_any_ = false;  // a reading since reset(), usable or not
+  TimeUs counted_stamp_;      // of the newest such
+  bool seen_ = false;         // a usable reading since reset()
+  TimeUs last_stamp_;         // of the newest usable reading
   float last_height_m_ = 0;
+  float age_s_ = 0;        // now - last_stamp_ at the last observe()
   bool recent_ = false;    // the newest usable reading, at the last observe()
   bool low_ = false;       // ... lay under the landed height
-  // The run of low readings within kStillM of one another that ends with the newest: its first
-  // stamp and its lowest and highest heights.
+  // The run of low readings within kStillM of one another that ends with the newest: whether
+  // there is one, its first stamp and its lowest and highest heights.
+  bool in_run_ = false;
   TimeUs still_since_;
   float still_min_m_ = 0;
   float still_max_m_ = 0;
-  bool down_ = false;      // that run has lasted kStillS
+  bool down_ = false;      // such a run has lasted kStillS, and no reading over the height since
 };
 
 }  // namespace kestrel::mission
