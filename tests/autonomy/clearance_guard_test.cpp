@@ -128,6 +128,27 @@ TEST(ClearanceGuard, ANonFiniteFloorOrABackwardClockNeverStretchesARise) {
   EXPECT_FLOAT_EQ(height_after(g, kT0 + Duration::from_ms(3100), std::numeric_limits<float>::infinity()), 1.0f);
 }
 
+// The floor a fresh reading shows under the estimated height counts before the filter places
+// it (it refuses the run of readings for altitude_relock_s) where it lies over the filter's by
+// more than a floor step; a reading out of reason leaves the filter's.
+TEST(ClearanceGuard, AFreshReadingShowsTheFloorBeforeTheFilterPlacesIt) {
+  const AltimeterSample over_box{kT0, 0.1f, 1e-4f};
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.0f, 1.0f, &over_box), 0.9f, 1e-6f);
+  const AltimeterSample desk_noise{kT0, 0.23f, 1e-4f};  // 1.02 m over a desk placed at 0.75 m
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.75f, 1.02f, &desk_noise), 0.75f, 1e-6f);
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.9f, 1.0f, nullptr), 0.9f, 1e-6f);
+  const AltimeterSample left_box{kT0, 1.0f, 1e-4f};  // the filter has not yet placed the floor again
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.9f, 1.0f, &left_box), 0.9f, 1e-6f);
+  EXPECT_NEAR(ClearanceGuard::floor_under(kNaN, 1.0f, &over_box), 0.9f, 1e-6f);
+  EXPECT_FLOAT_EQ(ClearanceGuard::floor_under(0.2f, kNaN, &over_box), 0.2f);
+  for (const float bad : {kNaN, -0.1f, ClearanceGuard::kMaxReadingM + 1.0f, std::numeric_limits<float>::infinity()}) {
+    const AltimeterSample r{kT0, bad, 1e-4f};
+    EXPECT_FLOAT_EQ(ClearanceGuard::floor_under(0.2f, 1.0f, &r), 0.2f) << bad;
+  }
+  ClearanceGuard g;
+  EXPECT_NEAR(height_after(g, kT0, ClearanceGuard::floor_under(0.0f, 1.0f, &over_box)), 1.15f, 1e-6f);
+}
+
 TEST(ClearanceGuard, ValidateRefusesWhatIsNotAClearance) {
   EXPECT_EQ(validate(ClearanceParams{}), Status::kOk);
   for (auto broken : {+[](ClearanceParams& p) { p.min_clearance_m = -0.1f; },

@@ -240,6 +240,7 @@ void AutonomyStack::imu_task(TimeUs now) {
       (void)filter_.update_altitude(a);  // rejections are counted by the filter
       newest_altitude_ = a;
       have_altitude_ = true;
+      altitude_fresh_ = true;
     }
   }
   nav_ = filter_.state();
@@ -319,7 +320,10 @@ void AutonomyStack::guidance_task(TimeUs now) {
   // a waypoint's height is the operator's, and the mission must still arrive at it.
   const bool exploring = mission_.phase() == mission::Phase::kExplore || mission_.phase() == mission::Phase::kReturn;
   const bool was_raised = clearance_.rise_m() > 0.0f;
-  clearance_.apply(now, filter_.floor_m(), exploring, setpoint_);
+  const float floor = ClearanceGuard::floor_under(filter_.floor_m(), nav_.position_m.z(),
+                                                  altitude_fresh_ ? &newest_altitude_ : nullptr);
+  altitude_fresh_ = false;
+  clearance_.apply(now, floor, exploring, setpoint_);
   if (!was_raised && clearance_.rise_m() > 0.0f) ++counters_.clearance_rises;
 }
 

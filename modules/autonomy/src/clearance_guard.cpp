@@ -12,6 +12,16 @@ Status validate(const ClearanceParams& p) {
   return ok ? Status::kOk : Status::kInvalidArgument;
 }
 
+float ClearanceGuard::floor_under(float filter_floor_m, float estimated_height_m,
+                                  const AltimeterSample* fresh_reading) {
+  if (fresh_reading == nullptr || !std::isfinite(estimated_height_m) || !std::isfinite(fresh_reading->height_m) ||
+      !(fresh_reading->height_m >= 0.0f && fresh_reading->height_m <= kMaxReadingM))
+    return filter_floor_m;
+  const float shown = estimated_height_m - fresh_reading->height_m;
+  if (!std::isfinite(filter_floor_m)) return shown;
+  return shown > filter_floor_m + kReadingStepM ? shown : filter_floor_m;
+}
+
 void ClearanceGuard::apply(TimeUs now, float floor_m, bool in_flight, GuidanceSetpoint& setpoint) {
   if (!in_flight || params_.min_clearance_m <= 0.0f) {
     rise_m_ = 0.0f;

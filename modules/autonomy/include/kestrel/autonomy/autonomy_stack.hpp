@@ -191,8 +191,9 @@ class AutonomyStack {
   bool guidance_scan_fresh_ = false;
   LaserScan newest_scan_;      // the newest scan, matched or not: the flight home's limiter
   bool newest_scan_fresh_ = false;
-  AltimeterSample newest_altitude_;  // the altimeter's newest reading: the landing's touchdown
+  AltimeterSample newest_altitude_;  // the altimeter's newest reading: touchdown, clearance
   bool have_altitude_ = false;
+  bool altitude_fresh_ = false;  // it arrived since the last guidance cycle
   ReturnVelocityBound return_bound_;  // the flight home's velocity, bounded on the newest scan
   ClearanceGuard clearance_;          // the altitude set-point kept clear of what is under it
   SensorWatchdog watchdog_;           // whether the IMU and the laser still talk
