@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <optional>
 
 namespace kestrel::autonomy {
 namespace {
@@ -85,6 +86,34 @@ TEST(ClearanceGuard, ASetpointAlreadyRaisedIsNotRaisedAgain) {
   EXPECT_NEAR(height_after(g, kT0 + Duration::from_ms(200), 0.0f, 1.1f), 1.15f, 1e-6f);  // held
   EXPECT_NEAR(g.rise_m(), 0.05f, 1e-6f);
   EXPECT_NEAR(height_after(g, kT0 + Duration::from_ms(300), 0.0f), 1.15f, 1e-6f);
+  EXPECT_EQ(g.rises(), 1u) << "one raised floor, interrupted by a higher set-point, is one rise";
+}
+
+// Rises are counted once per raised floor, or floors within one another's hold; a floor that
+// wants a height the set-point already clears is none; after the hold or outside the flight
+// altitude, the next raised floor is another.
+TEST(ClearanceGuard, RisesAreCountedOncePerRaisedFloor) {
+  ClearanceGuard g;
+  (void)height_after(g, kT0, 0.6f);  // wants 0.85 m: clear at 1.0 m
+  EXPECT_EQ(g.rises(), 0u);
+  (void)height_after(g, kT0 + Duration::from_ms(100), 0.9f);
+  (void)height_after(g, kT0 + Duration::from_ms(200), 0.95f);
+  (void)height_after(g, kT0 + Duration::from_ms(1000), 0.0f);
+  EXPECT_EQ(g.rises(), 1u);
+  (void)height_after(g, kT0 + Duration::from_ms(2500), 0.0f);  // the hold over: dropped
+  ASSERT_FLOAT_EQ(g.rise_m(), 0.0f);
+  (void)height_after(g, kT0 + Duration::from_ms(3000), 0.9f);
+  EXPECT_EQ(g.rises(), 2u);
+  (void)height_after(g, kT0 + Duration::from_ms(3100), 0.9f, 0.5f, false);
+  (void)height_after(g, kT0 + Duration::from_ms(3200), 0.9f);
+  EXPECT_EQ(g.rises(), 3u);
+  // Off the box onto a desk the flight clears: the box's height held, then, kept anew, the
+  // desk's, which raises nothing; the next box is another rise.
+  (void)height_after(g, kT0 + Duration::from_ms(4000), 0.75f);
+  (void)height_after(g, kT0 + Duration::from_ms(5300), 0.75f);
+  ASSERT_FLOAT_EQ(g.rise_m(), 0.0f);
+  (void)height_after(g, kT0 + Duration::from_ms(5400), 0.9f);
+  EXPECT_EQ(g.rises(), 4u);
 }
 
 // Taking off, landing or on the ground the height is the mission's own: nothing is changed and
@@ -128,25 +157,18 @@ TEST(ClearanceGuard, ANonFiniteFloorOrABackwardClockNeverStretchesARise) {
   EXPECT_FLOAT_EQ(height_after(g, kT0 + Duration::from_ms(3100), std::numeric_limits<float>::infinity()), 1.0f);
 }
 
-// The floor a fresh reading shows under the estimated height counts before the filter places
-// it (it refuses the run of readings for altitude_relock_s) where it lies over the filter's by
-// more than a floor step; a reading out of reason leaves the filter's.
-TEST(ClearanceGuard, AFreshReadingShowsTheFloorBeforeTheFilterPlacesIt) {
-  const AltimeterSample over_box{kT0, 0.1f, 1e-4f};
-  EXPECT_NEAR(ClearanceGuard::floor_under(0.0f, 1.0f, &over_box), 0.9f, 1e-6f);
-  const AltimeterSample desk_noise{kT0, 0.23f, 1e-4f};  // 1.02 m over a desk placed at 0.75 m
-  EXPECT_NEAR(ClearanceGuard::floor_under(0.75f, 1.02f, &desk_noise), 0.75f, 1e-6f);
-  EXPECT_NEAR(ClearanceGuard::floor_under(0.9f, 1.0f, nullptr), 0.9f, 1e-6f);
-  const AltimeterSample left_box{kT0, 1.0f, 1e-4f};  // the filter has not yet placed the floor again
-  EXPECT_NEAR(ClearanceGuard::floor_under(0.9f, 1.0f, &left_box), 0.9f, 1e-6f);
-  EXPECT_NEAR(ClearanceGuard::floor_under(kNaN, 1.0f, &over_box), 0.9f, 1e-6f);
-  EXPECT_FLOAT_EQ(ClearanceGuard::floor_under(0.2f, kNaN, &over_box), 0.2f);
-  for (const float bad : {kNaN, -0.1f, ClearanceGuard::kMaxReadingM + 1.0f, std::numeric_limits<float>::infinity()}) {
-    const AltimeterSample r{kT0, bad, 1e-4f};
-    EXPECT_FLOAT_EQ(ClearanceGuard::floor_under(0.2f, 1.0f, &r), 0.2f) << bad;
-  }
+// The floor the filter is weighing counts before it is placed (the filter refuses the run of
+// readings for altitude_relock_s) where it lies over the placed one; leaving a raised floor, the
+// placed one stands until the filter decides. A floor not finite is passed over.
+TEST(ClearanceGuard, TheFloorBeingWeighedCountsBeforeItIsPlaced) {
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.0f, 0.9f), 0.9f, 1e-6f);
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.9f, std::nullopt), 0.9f, 1e-6f);
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.9f, 0.0f), 0.9f, 1e-6f);
+  EXPECT_NEAR(ClearanceGuard::floor_under(kNaN, 0.9f), 0.9f, 1e-6f);
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.2f, kNaN), 0.2f, 1e-6f);
+  EXPECT_NEAR(ClearanceGuard::floor_under(0.2f, std::numeric_limits<float>::infinity()), 0.2f, 1e-6f);
   ClearanceGuard g;
-  EXPECT_NEAR(height_after(g, kT0, ClearanceGuard::floor_under(0.0f, 1.0f, &over_box)), 1.15f, 1e-6f);
+  EXPECT_NEAR(height_after(g, kT0, ClearanceGuard::floor_under(0.0f, 0.9f)), 1.15f, 1e-6f);
 }
 
 TEST(ClearanceGuard, ValidateRefusesWhatIsNotAClearance) {

@@ -310,6 +310,87 @@ TEST(HeightRun, ReadingsJumpingWithinARunAreNeverDecided) {
   EXPECT_NEAR(hover.filter().state().position_m.z(), 1.0f, 2e-2f);
 }
 
+// The floor a run shows while it is weighed (NavFilter::weighed_floor_m, the clearance guard's):
+// GIVEN a hover at 1 m, WHEN a 0.9 m box comes under it, THEN from the run's second reading until
+// it is decided the box's top is in sight, and once placed it is the filter's floor, no longer
+// weighed.
+TEST(HeightRun, AJumpedRunShowsItsFloorFromItsSecondReadingUntilDecided) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  EXPECT_FALSE(hover.filter().weighed_floor_m().has_value());
+  const auto box = [](double) { return 0.1f; };
+  ASSERT_EQ(hover.fly(0.02, box).at(0), Status::kRejected);
+  EXPECT_FALSE(hover.filter().weighed_floor_m().has_value()) << "one reading is not a floor";
+  int weighed = 0;
+  while (hover.fly(0.02, box).at(0) == Status::kRejected) {
+    ASSERT_TRUE(hover.filter().weighed_floor_m().has_value()) << weighed;
+    EXPECT_NEAR(*hover.filter().weighed_floor_m(), 0.9f, 1e-2f);
+    EXPECT_EQ(hover.filter().floor_m(), 0.0f);
+    ++weighed;
+  }
+  EXPECT_GE(weighed, 19);
+  EXPECT_EQ(hover.filter().counters().floor_steps, 1u);
+  EXPECT_NEAR(hover.filter().floor_m(), 0.9f, 1e-2f);
+  EXPECT_FALSE(hover.filter().weighed_floor_m().has_value());
+}
+
+// GIVEN a single stray reading, readings jumping between two levels, or a run whose readings
+// stopped, THEN nothing is weighed: no floor is in sight that the filter might place.
+TEST(HeightRun, AStrayReadingAJumpingRunOrAStoppedRunShowsNoFloor) {
+  Hover hover;
+  hover.fly(1.0, [](double) { return 1.0f; });
+  int n = 0;
+  const auto weighed_while = [&hover](double seconds, auto height) {
+    bool any = false;
+    for (double t = 0; t < seconds; t += 0.02) {
+      (void)hover.fly(0.02, height);
+      any = any || hover.filter().weighed_floor_m().has_value();
+    }
+    return any;
+  };
+  EXPECT_FALSE(weighed_while(1.0, [&n](double) { return ++n % 10 == 0 ? 0.1f : 1.0f; }));
+  EXPECT_FALSE(weighed_while(1.0, [&n](double) { return ++n % 2 == 0 ? 0.3f : 0.55f; }));
+  hover.fly(1.0, [](double) { return 1.0f; });
+  (void)hover.fly(0.04, [](double) { return 0.1f; });
+  ASSERT_TRUE(hover.filter().weighed_floor_m().has_value());
+  (void)hover.fly(0.2, [](double) { return Hover::kNoReading; });
+  EXPECT_TRUE(hover.filter().weighed_floor_m().has_value()) << "silent for under kWeighedStaleS";
+  (void)hover.fly(0.1, [](double) { return Hover::kNoReading; });
+  EXPECT_FALSE(hover.filter().weighed_floor_m().has_value()) << "silent past it: stale";
+}
+
+// GIVEN a slow altimeter (5 Hz), WHEN a box comes under the vehicle, THEN its top stays in sight
+// from the run's second reading until the run is decided, however long that takes: staleness is
+// the newest reading's age, not the run's.
+TEST(HeightRun, ASlowAltimetersRunIsWeighedUntilDecided) {
+  Hover hover;
+  int n = 0;
+  const auto every_tenth = [&n](float h) { return [&n, h](double) { return ++n % 10 == 0 ? h : Hover::kNoReading; }; };
+  hover.fly(1.0, every_tenth(1.0f));
+  ASSERT_NEAR(hover.filter().state().position_m.z(), 1.0f, 1e-2f);
+  int weighed = 0;
+  for (int reading = 0; reading < 20 && hover.filter().counters().floor_steps == 0; ++reading) {
+    (void)hover.fly(0.1, every_tenth(0.1f));  // 0.1 s: half a reading period, on and off
+    if (hover.filter().counters().altitude_rejected >= 2 && hover.filter().counters().floor_steps == 0) {
+      ASSERT_TRUE(hover.filter().weighed_floor_m().has_value()) << reading;
+      EXPECT_NEAR(*hover.filter().weighed_floor_m(), 0.9f, 2e-2f);
+      ++weighed;
+    }
+  }
+  EXPECT_EQ(hover.filter().counters().floor_steps, 1u);
+  EXPECT_GE(weighed, 5);
+}
+
+// GIVEN runs off (altitude_relock_s = 0), THEN no floor is ever weighed.
+TEST(HeightRun, WithRunsOffNoFloorIsWeighed) {
+  EkfParams p;
+  p.altitude_relock_s = 0.0f;
+  Hover hover(p);
+  hover.fly(1.0, [](double) { return 1.0f; });
+  (void)hover.fly(0.2, [](double) { return 0.1f; });
+  EXPECT_FALSE(hover.filter().weighed_floor_m().has_value());
+}
+
 // GIVEN altitude_relock_s = 0, THEN a step is rejected until the height's own variance has
 // grown to take it (here longer than the 1 s flown): the filter's behaviour before the runs.
 TEST(HeightRun, ZeroSecondsNeverDecides) {
@@ -389,6 +470,7 @@ TEST(HeightRun, AnEstimateCreepingOutOfItsGateIsRelockedNotAFloor) {
   pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
   ASSERT_EQ(filter->update_pose(pm), Status::kOk);
   float worst = 0;
+  bool weighed = false;
   for (int64_t i = 1; i <= 2000; ++i) {  // 10 s
     const TimeUs t = TimeUs::from_us(kImuPeriodUs * i);
     ImuSample imu = level_at_rest(t);
@@ -396,7 +478,9 @@ TEST(HeightRun, AnEstimateCreepingOutOfItsGateIsRelockedNotAFloor) {
     ASSERT_EQ(filter->predict(imu), Status::kOk);
     if (i % kImuPerHeight == 0) (void)filter->update_altitude({t, 1.0f, 1e-4f});
     if (i > kImuPerHeight) worst = std::max(worst, std::fabs(filter->state().position_m.z() - 1.0f));
+    weighed = weighed || filter->weighed_floor_m().has_value();
   }
+  EXPECT_FALSE(weighed) << "a run that crept out of the gate did not jump: no floor is in sight";
   const NavFilterCounters& c = filter->counters();
   EXPECT_GT(c.altitude_rejected, 0u) << "the estimate never left its gate: the test proves nothing";
   EXPECT_GE(c.altitude_relocks, 1u);

@@ -22,7 +22,8 @@
 //    which drifts; in gt-building four landings touched the wall before the bound).
 //  - OverABoxTheAltimeterFoundTheFlightKeepsItsClearance (every preset): a corridor with a
 //    0.9 m box across it, its top seen from above; the set-point rises over it
-//    (autonomy/clearance_guard.hpp), and does not with the guard off.
+//    (autonomy/clearance_guard.hpp) as soon as the filter weighs the box's top, and does not
+//    with the guard off.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -62,6 +63,7 @@ struct Flight {
   double max_altitude_m = 0;
   double floor_steps = -1;      // the height filter's (EkfParams::altitude_relock_s)
   double clearance_rises = -1;  // the altitude set-point's (autonomy/clearance_guard.hpp)
+  double clearance_rises_weighed = -1;  // ...that began before the filter placed the floor
   Eigen::Vector3d final_truth = Eigen::Vector3d::Zero();
 };
 
@@ -103,6 +105,7 @@ Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool ut
   f.max_altitude_m = rec.max_altitude_m();
   f.floor_steps = metric(*mission, "nav.floor_steps");
   f.clearance_rises = metric(*mission, "clearance_rises");
+  f.clearance_rises_weighed = metric(*mission, "clearance_rises_weighed");
   f.final_truth = sim.truth().position_m;
   return f;
 }
@@ -180,6 +183,9 @@ TEST(ExploreClosedLoop, OverABoxTheAltimeterFoundTheFlightKeepsItsClearance) {
   // miss home's height).
   EXPECT_GE(f.floor_steps, 4.0);
   EXPECT_GE(f.clearance_rises, 2.0);
+  // The box's top counted while the filter still weighed it (NavFilter::weighed_floor_m), not
+  // altitude_relock_s later when placed.
+  EXPECT_GE(f.clearance_rises_weighed, 1.0);
   EXPECT_TRUE(f.returned_home);
   EXPECT_TRUE(f.landed);
   EXPECT_LT(f.final_truth.z(), 0.1);

@@ -558,6 +558,7 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   out.emplace_back("home_fixes", c.home_fixes);
   out.emplace_back("home_fixes_refused", c.home_fixes_refused);
   out.emplace_back("clearance_rises", c.clearance_rises);
+  out.emplace_back("clearance_rises_weighed", c.clearance_rises_weighed);
   // When each phase began (its first time): an explore phase that ended well before
   // explore_s ran out of frontiers.
   for (std::size_t i = 0; i < mission::kPhaseCount; ++i) {

@@ -240,7 +240,6 @@ void AutonomyStack::imu_task(TimeUs now) {
       (void)filter_.update_altitude(a);  // rejections are counted by the filter
       newest_altitude_ = a;
       have_altitude_ = true;
-      altitude_fresh_ = true;
     }
   }
   nav_ = filter_.state();
@@ -319,12 +318,12 @@ void AutonomyStack::guidance_task(TimeUs now) {
   // Exploring and flying home the mission's height is the flight altitude, nobody's target;
   // a waypoint's height is the operator's, and the mission must still arrive at it.
   const bool exploring = mission_.phase() == mission::Phase::kExplore || mission_.phase() == mission::Phase::kReturn;
-  const bool was_raised = clearance_.rise_m() > 0.0f;
-  const float floor = ClearanceGuard::floor_under(filter_.floor_m(), nav_.position_m.z(),
-                                                  altitude_fresh_ ? &newest_altitude_ : nullptr);
-  altitude_fresh_ = false;
+  const float floor = ClearanceGuard::floor_under(filter_.floor_m(), filter_.weighed_floor_m());
+  const uint32_t rises_before = clearance_.rises();
   clearance_.apply(now, floor, exploring, setpoint_);
-  if (!was_raised && clearance_.rise_m() > 0.0f) ++counters_.clearance_rises;
+  const uint32_t rises = clearance_.rises() - rises_before;
+  counters_.clearance_rises += rises;
+  if (floor != filter_.floor_m()) counters_.clearance_rises_weighed += rises;
 }
 
 void AutonomyStack::control_task(TimeUs now) {

@@ -12,20 +12,17 @@ Status validate(const ClearanceParams& p) {
   return ok ? Status::kOk : Status::kInvalidArgument;
 }
 
-float ClearanceGuard::floor_under(float filter_floor_m, float estimated_height_m,
-                                  const AltimeterSample* fresh_reading) {
-  if (fresh_reading == nullptr || !std::isfinite(estimated_height_m) || !std::isfinite(fresh_reading->height_m) ||
-      !(fresh_reading->height_m >= 0.0f && fresh_reading->height_m <= kMaxReadingM))
-    return filter_floor_m;
-  const float shown = estimated_height_m - fresh_reading->height_m;
-  if (!std::isfinite(filter_floor_m)) return shown;
-  return shown > filter_floor_m + kReadingStepM ? shown : filter_floor_m;
+float ClearanceGuard::floor_under(float placed_floor_m, std::optional<float> weighed_floor_m) {
+  if (!weighed_floor_m.has_value() || !std::isfinite(*weighed_floor_m)) return placed_floor_m;
+  if (!std::isfinite(placed_floor_m)) return *weighed_floor_m;
+  return std::max(placed_floor_m, *weighed_floor_m);
 }
 
 void ClearanceGuard::apply(TimeUs now, float floor_m, bool in_flight, GuidanceSetpoint& setpoint) {
   if (!in_flight || params_.min_clearance_m <= 0.0f) {
     rise_m_ = 0.0f;
     kept_above_m_ = kNothingUnder;
+    raised_for_kept_ = false;
     return;
   }
   // Only a raised floor wants a height: on the take-off floor the flight altitude is the
@@ -37,6 +34,8 @@ void ClearanceGuard::apply(TimeUs now, float floor_m, bool in_flight, GuidanceSe
   // A clock that stepped back counts as the hold being over: it cannot stretch a rise forever.
   const bool held = now >= wanted_at_ && (now - wanted_at_).seconds() < params_.hold_s;
   if (wanted >= kept_above_m_ || !held) {
+    // A height kept anew after the hold that raises nothing ends the rise: the next is another.
+    if (!held && !(wanted > setpoint.position_m.z())) raised_for_kept_ = false;
     kept_above_m_ = wanted;
     wanted_at_ = now;
   }
@@ -44,6 +43,8 @@ void ClearanceGuard::apply(TimeUs now, float floor_m, bool in_flight, GuidanceSe
   const float rise = kept_above_m_ - setpoint.position_m.z();
   rise_m_ = std::isfinite(rise) ? std::clamp(rise, 0.0f, params_.max_rise_m) : 0.0f;
   setpoint.position_m.z() += rise_m_;
+  if (rise_m_ > 0.0f && !raised_for_kept_) ++rises_;
+  raised_for_kept_ = raised_for_kept_ || rise_m_ > 0.0f;
 }
 
 }  // namespace kestrel::autonomy

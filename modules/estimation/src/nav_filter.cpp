@@ -43,6 +43,15 @@ void NavFilter::reset() {
   counters_ = NavFilterCounters{};
 }
 
+std::optional<float> NavFilter::weighed_floor_m() const {
+  const Filters& f = cur_;
+  const bool jumped = f.run_jumped_s >= 0.0f && f.run_jumped_s <= kJumpWithinS;
+  if (params_.altitude_relock_s <= 0.0f || f.heights_rejected < kWeighedMinRejected || !jumped ||
+      !(f.rejected_run_s - f.run_newest_s <= kWeighedStaleS) || !std::isfinite(f.run_last_nu))
+    return std::nullopt;
+  return f.floor_m - f.run_last_nu;
+}
+
 Duration NavFilter::history_span() const { return count_ == 0 ? Duration{} : slot(count_ - 1).t - slot(0).t; }
 
 void NavFilter::set_attitude(const FlightStatus& status) {
@@ -519,6 +528,7 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
       f.run_departing = false;
     }
     f.run_last_nu = iz.nu;
+    f.run_newest_s = f.rejected_run_s;
     if (f.run_jumped_s < 0 && std::fabs(iz.nu - f.last_taken_nu) > params_.altitude_step_tol_m)
       f.run_jumped_s = f.rejected_run_s;
     bool departs = !(std::fabs(iz.nu - f.run_settled_nu) <= params_.altitude_step_tol_m);
@@ -554,7 +564,7 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     const bool back_over_take_off_floor = f.floor_m != 0.0f && std::fabs(iz.nu) > params_.altitude_step_tol_m &&
                                           std::fabs(iz.nu - f.floor_m) <= params_.altitude_step_tol_m;
     const bool may_yet_stay = jumped && !stayed && !back_over_take_off_floor && iz.s > 0.0f &&
-                              f.rejected_run_s < (1.0f + kSettledShare) * params_.altitude_relock_s;
+                              f.rejected_run_s < decide_by_s();
     if (!decided || may_yet_stay) {
       if (count) ++counters_.altitude_rejected;
       return Status::kRejected;

@@ -73,7 +73,8 @@ struct StackCounters {
   uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
   uint32_t home_fixes = 0;           // home re-localisations the filter applied
   uint32_t home_fixes_refused = 0;   // ...and refused
-  uint32_t clearance_rises = 0;      // altitude set-point raised over furniture the altimeter found (from none)
+  uint32_t clearance_rises = 0;      // altitude set-point raised over furniture the altimeter found (ClearanceGuard::rises)
+  uint32_t clearance_rises_weighed = 0;  // ...whose first raised cycle was over a floor the filter still weighed
 };
 
 // The newest scan the compact SLAM processed, in the filter's frame (through the SlamFrame it
@@ -191,9 +192,8 @@ class AutonomyStack {
   bool guidance_scan_fresh_ = false;
   LaserScan newest_scan_;      // the newest scan, matched or not: the flight home's limiter
   bool newest_scan_fresh_ = false;
-  AltimeterSample newest_altitude_;  // the altimeter's newest reading: touchdown, clearance
+  AltimeterSample newest_altitude_;  // the altimeter's newest reading: touchdown
   bool have_altitude_ = false;
-  bool altitude_fresh_ = false;  // it arrived since the last guidance cycle
   ReturnVelocityBound return_bound_;  // the flight home's velocity, bounded on the newest scan
   ClearanceGuard clearance_;          // the altitude set-point kept clear of what is under it
   SensorWatchdog watchdog_;           // whether the IMU and the laser still talk

@@ -17,10 +17,10 @@
 // The filter places the floor only when a run of readings is decided (altitude_relock_s, 0.4 s
 // or more); meanwhile it refuses the readings, and its height, on the IMU alone, drifts: at the
 // URG-04LX's 10 Hz, gt-building flights sank 2.5 cm in that half second over the 0.9 m box and
-// touched it with the rim behind (7 of 20 flights' contacts in 150; none with this, session 59 in
-// modules/exploration/EXPERIMENTS.md). So the floor the newest reading shows (the estimated height
-// less the reading: floor_under) counts as soon as it arrives where it lies over the filter's by
-// a floor step, and the filter's when it is placed.
+// touched it with the rim behind (7 of 20 flights' contacts in 150; none with the newest reading
+// counted, session 59 in modules/exploration/EXPERIMENTS.md). So the floor the filter is weighing
+// (NavFilter::weighed_floor_m: a run of readings that jumped and agree, the floor its newest
+// shows) counts from the run's second reading, where it lies over the placed one (floor_under).
 //
 // It acts only where a floor lies above the take-off floor (the filter places one only with its
 // runs of rejected heights on: EkfParams::altitude_relock_s > 0, the default; in the simulator,
@@ -30,8 +30,11 @@
 // argument altitude_m). Home, checked at the flight altitude in 3D, is not arrived at while a
 // rise is held (at most hold_s after the vehicle leaves a raised floor).
 //
-// No heap, no exceptions: the height kept and when it was last wanted are the only state.
+// No heap, no exceptions: the height kept, when it was last wanted and whether it raised the
+// set-point are the only state (and a count of rises, for the flight's counters).
+#include <cstdint>
 #include <limits>
+#include <optional>
 
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/status.hpp"
@@ -54,20 +57,21 @@ class ClearanceGuard {
   explicit ClearanceGuard(const ClearanceParams& p = {}) : params_(p) {}
 
   // One guidance cycle. `floor_m` is the floor under the altimeter above the take-off floor
-  // (NavFilter::floor_m()); `in_flight` says the set-point's height is the flight altitude
+  // (floor_under()); `in_flight` says the set-point's height is the flight altitude
   // (false: taking off, landing, on the ground; the rise is dropped and nothing changes). The
   // set-point's height, in either mode, is raised by rise_m().
   void apply(TimeUs now, float floor_m, bool in_flight, GuidanceSetpoint& setpoint);
   float rise_m() const { return rise_m_; }
+  // How many times a height was kept that raised the set-point: once per raised floor (or
+  // floors within one another's hold), however many cycles a set-point already higher (the
+  // mission's own, the cycle it turns home) interrupts the rise; after the hold, a height kept
+  // anew that raises nothing ends it.
+  uint32_t rises() const { return rises_; }
 
-  // The floor for apply(): the filter's (NavFilter::floor_m()), or the one a reading that arrived
-  // this cycle shows under the estimated height, when over it by more than kReadingStepM.
-  // nullptr, or a reading not finite, negative or over kMaxReadingM: the filter's alone.
-  static float floor_under(float filter_floor_m, float estimated_height_m, const AltimeterSample* fresh_reading);
-  static constexpr float kMaxReadingM = 20.0f;
-  // The filter's own least floor step (EkfParams::altitude_step_tol_m): over a floor it has
-  // placed, the readings' and the height's centimetres of noise are not a new floor.
-  static constexpr float kReadingStepM = 0.1f;
+  // The floor for apply(): the filter's placed one (NavFilter::floor_m()), or the one it is
+  // weighing (NavFilter::weighed_floor_m()) where that lies higher. A floor not finite is
+  // passed over for the other.
+  static float floor_under(float placed_floor_m, std::optional<float> weighed_floor_m);
 
  private:
   static constexpr float kNothingUnder = -std::numeric_limits<float>::infinity();
@@ -76,6 +80,8 @@ class ClearanceGuard {
   float kept_above_m_ = kNothingUnder;  // the set-point's least height: a raised floor's plus the clearance
   TimeUs wanted_at_;                    // when it was last wanted
   float rise_m_ = 0.0f;                 // this cycle's
+  bool raised_for_kept_ = false;        // the height kept has raised the set-point
+  uint32_t rises_ = 0;
 };
 
 }  // namespace kestrel::autonomy

@@ -66,7 +66,8 @@
 //   Status update_at_rest(stamp, variance)   zero velocity: the vehicle rests on the ground
 //   Status apply_correction(PoseMeasurement2) SLAM pose of the vehicle at meas.stamp
 //   NavState state() const             the newest estimate; valid once initialised
-//   counters(), frame_correction(), axis(i), floor_m(), heading(), history_span()
+//   counters(), frame_correction(), axis(i), floor_m(), weighed_floor_m(), heading(),
+//   history_span()
 //   Conventions: FlightStatus roll and pitch are right-handed rotations about body x
 //   (forward) and body y (left), body to world = Rz(yaw) Ry(pitch) Rx(roll), as the
 //   simulator's autopilot reports them: pitch > 0 is nose down (like AttitudeSetpoint), roll
@@ -75,6 +76,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 
 #include "kestrel/core/messages.hpp"
 #include "kestrel/core/se2.hpp"
@@ -187,6 +189,16 @@ class NavFilter {
   const AxisState& axis(int i) const { return cur_.ax[static_cast<std::size_t>(i)]; }
   // Where the altimeter's floor is now, above the take-off floor (0 until a floor step).
   float floor_m() const { return cur_.floor_m; }
+  // The floor a run of gated heights shows while it is being weighed, before it is decided:
+  // for what must not wait altitude_relock_s to know what is under the vehicle (the clearance
+  // guard over an obstacle's top). Only a run that jumped (kJumpWithinS) and has at least
+  // kWeighedMinRejected readings, each within altitude_step_tol_m of the one before (a single
+  // stray reading is not a floor), its newest no more than kWeighedStaleS old (an altimeter
+  // fallen silent shows nothing): the floor its newest reading would place, the height less
+  // that reading. nullopt otherwise, and with runs off (altitude_relock_s = 0).
+  std::optional<float> weighed_floor_m() const;
+  static constexpr uint8_t kWeighedMinRejected = 2;
+  static constexpr float kWeighedStaleS = 0.25f;
   const HeadingState& heading() const { return cur_.hd; }
   Duration history_span() const;
 
@@ -212,6 +224,7 @@ class NavFilter {
     float run_departed_nu = 0;
     float run_departed_s = 0;
     bool run_departing = false;
+    float run_newest_s = 0;        // the run's time at its newest reading
     float last_taken_nu = 0;       // the innovation of the last height taken, m
     uint8_t heights_rejected = 0;  // in a row, saturating
     bool height_known = false;     // false until the first altimeter sample
@@ -245,6 +258,8 @@ class NavFilter {
   Status submit(Entry e);
   Status apply(Filters& f, Entry& e, const Slot& s, std::size_t log_index);
   Status apply_pose(Filters& f, const Entry& e, float delta, bool count);
+  // The run's time by which a run of gated heights is decided, given its time to stay.
+  float decide_by_s() const { return (1.0f + kSettledShare) * params_.altitude_relock_s; }
   Status apply_altitude(Filters& f, const Entry& e, float delta, bool count);
   Status apply_at_rest(Filters& f, const Entry& e, bool count);
   void shift(Filters& f, const Eigen::Vector3f& d) const;
