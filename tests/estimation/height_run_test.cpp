@@ -357,6 +357,13 @@ TEST(HeightRun, AStrayReadingAJumpingRunOrAStoppedRunShowsNoFloor) {
   EXPECT_TRUE(hover.filter().weighed_floor_m().has_value()) << "silent for under kWeighedStaleS";
   (void)hover.fly(0.1, [](double) { return Hover::kNoReading; });
   EXPECT_FALSE(hover.filter().weighed_floor_m().has_value()) << "silent past it: stale";
+  // An IMU gap the filter coasts over counts towards the newest reading's age.
+  hover.fly(1.0, [](double) { return 1.0f; });
+  (void)hover.fly(0.04, [](double) { return 0.1f; });
+  ASSERT_TRUE(hover.filter().weighed_floor_m().has_value());
+  hover.drop_imu(0.3);
+  (void)hover.fly(0.005, [](double) { return Hover::kNoReading; });
+  EXPECT_FALSE(hover.filter().weighed_floor_m().has_value()) << "0.3 s of IMU gap: stale";
 }
 
 // GIVEN a slow altimeter (5 Hz), WHEN a box comes under the vehicle, THEN its top stays in sight
@@ -550,6 +557,36 @@ TEST(HeightRun, ALateReadingReplaysAFloorStepAsInOrder) {
   EXPECT_EQ(in_order->update_altitude({t, 0.55f, 1e-4f}), Status::kOk);
   EXPECT_EQ(late->update_altitude({t, 0.55f, 1e-4f}), Status::kOk);
   EXPECT_FLOAT_EQ(in_order->state().position_m.z(), late->state().position_m.z());
+}
+
+// GIVEN a box under the vehicle from step 200, WHEN the run's second reading arrives late (after
+// the fourth), THEN the replay weighs the same floor as a filter that had it in order: the
+// weighed run, its newest reading's time included, lives in the replayed state.
+TEST(HeightRun, ALateReadingWeighsTheSameFloorAsInOrder) {
+  NavFilter in_order, late;
+  PoseMeasurement2 pm;
+  pm.covariance = Eigen::Matrix3f::Identity() * 1e-4f;
+  ASSERT_EQ(in_order.update_pose(pm), Status::kOk);
+  ASSERT_EQ(late.update_pose(pm), Status::kOk);
+  AltimeterSample held{};
+  for (int64_t i = 1; i <= 216; ++i) {
+    const TimeUs t = TimeUs::from_us(kImuPeriodUs * i);
+    ASSERT_EQ(in_order.predict(level_at_rest(t)), Status::kOk);
+    ASSERT_EQ(late.predict(level_at_rest(t)), Status::kOk);
+    if (i % kImuPerHeight != 0) continue;
+    const AltimeterSample h{t, i < 200 ? 1.0f : 0.1f, 1e-4f};
+    (void)in_order.update_altitude(h);
+    if (i == 204) {
+      held = h;
+    } else {
+      (void)late.update_altitude(h);
+    }
+  }
+  ASSERT_TRUE(in_order.weighed_floor_m().has_value());
+  EXPECT_EQ(late.update_altitude(held), Status::kRejected);
+  EXPECT_GT(late.counters().replays, 0u);
+  ASSERT_TRUE(late.weighed_floor_m().has_value());
+  EXPECT_FLOAT_EQ(*in_order.weighed_floor_m(), *late.weighed_floor_m());
 }
 
 }  // namespace

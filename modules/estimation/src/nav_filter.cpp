@@ -45,7 +45,7 @@ void NavFilter::reset() {
 
 std::optional<float> NavFilter::weighed_floor_m() const {
   const Filters& f = cur_;
-  const bool jumped = f.run_jumped_s >= 0.0f && f.run_jumped_s <= kJumpWithinS;
+  const bool jumped = run_jumped(f);
   if (params_.altitude_relock_s <= 0.0f || f.heights_rejected < kWeighedMinRejected || !jumped ||
       !(f.rejected_run_s - f.run_newest_s <= kWeighedStaleS) || !std::isfinite(f.run_last_nu))
     return std::nullopt;
@@ -553,7 +553,7 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     // given the time to: until kSettledShare of altitude_relock_s more, then it is decided as it
     // stands (a climb the filter does not see keeps moving). Anything else is the estimate's
     // error; so is a run met with no usable variance, which no update could weigh.
-    const bool jumped = f.run_jumped_s >= 0.0f && f.run_jumped_s <= kJumpWithinS;
+    const bool jumped = run_jumped(f);
     const bool stayed = f.rejected_run_s - f.run_settled_s >= kSettledShare * params_.altitude_relock_s;
     // Over a raised floor, a run that ends where the take-off floor would put it is that floor
     // again, however it got there: leaving a box, a tilted beam meets its side face and reads
@@ -564,7 +564,7 @@ Status NavFilter::apply_altitude(Filters& f, const Entry& e, float delta, bool c
     const bool back_over_take_off_floor = f.floor_m != 0.0f && std::fabs(iz.nu) > params_.altitude_step_tol_m &&
                                           std::fabs(iz.nu - f.floor_m) <= params_.altitude_step_tol_m;
     const bool may_yet_stay = jumped && !stayed && !back_over_take_off_floor && iz.s > 0.0f &&
-                              f.rejected_run_s < decide_by_s();
+                              f.rejected_run_s < (1.0f + kSettledShare) * params_.altitude_relock_s;
     if (!decided || may_yet_stay) {
       if (count) ++counters_.altitude_rejected;
       return Status::kRejected;

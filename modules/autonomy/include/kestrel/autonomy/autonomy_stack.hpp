@@ -73,7 +73,9 @@ struct StackCounters {
   uint32_t device_errors = 0;        // polls that returned an error (not kNoData)
   uint32_t home_fixes = 0;           // home re-localisations the filter applied
   uint32_t home_fixes_refused = 0;   // ...and refused
-  uint32_t clearance_rises = 0;      // altitude set-point raised over furniture the altimeter found (ClearanceGuard::rises)
+  // Altitude set-point raised over furniture the altimeter found (ClearanceGuard::rises), by any
+  // height: a desk's floor placed a few millimetres high counts too.
+  uint32_t clearance_rises = 0;
   uint32_t clearance_rises_weighed = 0;  // ...whose first raised cycle was over a floor the filter still weighed
 };
 

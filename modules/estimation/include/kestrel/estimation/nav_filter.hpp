@@ -198,6 +198,8 @@ class NavFilter {
   // that reading. nullopt otherwise, and with runs off (altitude_relock_s = 0).
   std::optional<float> weighed_floor_m() const;
   static constexpr uint8_t kWeighedMinRejected = 2;
+  // A reading reaches the filter a scan late, so at 10 Hz its newest is 0.2 s old just before
+  // the next: a late one drops the weighed floor for a cycle, which ClearanceGuard's hold spans.
   static constexpr float kWeighedStaleS = 0.25f;
   const HeadingState& heading() const { return cur_.hd; }
   Duration history_span() const;
@@ -258,8 +260,9 @@ class NavFilter {
   Status submit(Entry e);
   Status apply(Filters& f, Entry& e, const Slot& s, std::size_t log_index);
   Status apply_pose(Filters& f, const Entry& e, float delta, bool count);
-  // The run's time by which a run of gated heights is decided, given its time to stay.
-  float decide_by_s() const { return (1.0f + kSettledShare) * params_.altitude_relock_s; }
+  // A run jumped: its readings lay over altitude_step_tol_m from the last height taken within
+  // kJumpWithinS of its start.
+  static bool run_jumped(const Filters& f) { return f.run_jumped_s >= 0.0f && f.run_jumped_s <= kJumpWithinS; }
   Status apply_altitude(Filters& f, const Entry& e, float delta, bool count);
   Status apply_at_rest(Filters& f, const Entry& e, bool count);
   void shift(Filters& f, const Eigen::Vector3f& d) const;
