@@ -18,9 +18,10 @@
 // or more); meanwhile it refuses the readings, and its height, on the IMU alone, drifts: at the
 // URG-04LX's 10 Hz, gt-building flights sank 2.5 cm in that half second over the 0.9 m box and
 // touched it with the rim behind (7 of 20 flights' contacts in 150; none with the newest reading
-// counted, session 59, nor with the weighed floor, session 60: modules/exploration/EXPERIMENTS.md). So the floor the filter is weighing
-// (NavFilter::weighed_floor_m: a run of readings that jumped and agree, the floor its newest
-// shows) counts from the run's second reading, where it lies over the placed one (floor_under).
+// counted, session 59, nor with the weighed floor, session 60: modules/exploration/EXPERIMENTS.md).
+// So the floor the filter is weighing (NavFilter::weighed_floor_m: a run of readings that jumped
+// and agree, the floor its newest shows) counts from the run's second reading, where it lies over
+// the placed one (floor_under).
 //
 // It acts only where a floor lies above the take-off floor (the filter places one only with its
 // runs of rejected heights on: EkfParams::altitude_relock_s > 0, the default; in the simulator,

@@ -198,8 +198,8 @@ class NavFilter {
   // that reading. nullopt otherwise, and with runs off (altitude_relock_s = 0).
   std::optional<float> weighed_floor_m() const;
   static constexpr uint8_t kWeighedMinRejected = 2;
-  // A reading reaches the filter a scan late, so at 10 Hz its newest is 0.2 s old just before
-  // the next: a late one drops the weighed floor for a cycle, which ClearanceGuard's hold spans.
+  // At 10 Hz a reading is due every 0.1 s; one delivered late may drop the weighed floor for a
+  // cycle, which ClearanceGuard's hold (hold_s) spans.
   static constexpr float kWeighedStaleS = 0.25f;
   const HeadingState& heading() const { return cur_.hd; }
   Duration history_span() const;
@@ -262,7 +262,9 @@ class NavFilter {
   Status apply_pose(Filters& f, const Entry& e, float delta, bool count);
   // A run jumped: its readings lay over altitude_step_tol_m from the last height taken within
   // kJumpWithinS of its start.
-  static bool run_jumped(const Filters& f) { return f.run_jumped_s >= 0.0f && f.run_jumped_s <= kJumpWithinS; }
+  static bool run_jumped(const Filters& f) {
+    return f.run_jumped_s >= 0.0f && f.run_jumped_s <= kJumpWithinS;
+  }
   Status apply_altitude(Filters& f, const Entry& e, float delta, bool count);
   Status apply_at_rest(Filters& f, const Entry& e, bool count);
   void shift(Filters& f, const Eigen::Vector3f& d) const;
