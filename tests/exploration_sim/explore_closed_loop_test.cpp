@@ -55,6 +55,10 @@ struct Flight {
   std::size_t contacts = 0;
   double allocs = -1;
   bool landed = false;
+  // What said it was down (mission::TouchdownBy): on the floor, not held up by anything the
+  // altimeter missed (mission/held_descent.hpp).
+  bool landed_by_altimeter = false;
+  bool landed_by_estimate = false;
   bool returned_home = false;
   double slam_scans = -1;       // scans the compact SLAM processed
   double nav_corrections = -1;  // its corrections the filter took
@@ -94,6 +98,8 @@ Flight explore(const WorldParseResult& w, double seconds, uint32_t seed, bool ut
   f.t90_s = rec.coverage_t90_s();
   f.rooms = rec.rooms_entered();
   f.landed = metric(*mission, "mission_finished") == 1.0;
+  f.landed_by_altimeter = metric(*mission, "touchdown_by.altimeter") == 1.0;
+  f.landed_by_estimate = metric(*mission, "touchdown_by.estimate") == 1.0;
   f.contacts = sim.contacts().size();
   // The stack's loop, armed and counted by the mission around every poll of the stack.
   f.allocs = metric(*mission, "heap_allocs_after_arm");
@@ -188,6 +194,7 @@ TEST(ExploreClosedLoop, OverABoxTheAltimeterFoundTheFlightKeepsItsClearance) {
   EXPECT_GE(f.clearance_rises_weighed, 1.0);
   EXPECT_TRUE(f.returned_home);
   EXPECT_TRUE(f.landed);
+  EXPECT_TRUE(f.landed_by_altimeter);
   EXPECT_LT(f.final_truth.z(), 0.1);
   EXPECT_EQ(f.allocs, 0.0);
   MissionOptions unguarded;
@@ -237,6 +244,7 @@ TEST(ExploreClosedLoop, ExploresEveryRoomWithoutCollisionUtm30lx) {
   const Flight f = explore_gt_building(2100.0, 4, true, 1800.0);
   expect_ninety_percent_safely(f, 7);
   EXPECT_TRUE(f.landed);
+  EXPECT_TRUE(f.landed_by_estimate);  // its altimeter silent 0.02 m over the floor
   EXPECT_EQ(f.slam_scans, 0.0);  // the UTM-30LX flies without the compact SLAM
 }
 
@@ -244,6 +252,7 @@ TEST(ExploreClosedLoop, ExploresEveryRoomWithoutCollisionUrg04lx) {
   const Flight f = explore_gt_building(2100.0, 4, false, 1800.0);
   expect_ninety_percent_safely(f, 7);
   EXPECT_TRUE(f.landed);
+  EXPECT_TRUE(f.landed_by_altimeter);
   // The URG-04LX flies with it, and the filter takes its corrections (seed 4: 248 in 11,458 scans).
   EXPECT_GT(f.slam_scans, 1000.0);
   EXPECT_GT(f.nav_corrections, 10.0);

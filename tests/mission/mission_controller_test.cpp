@@ -52,13 +52,17 @@ struct MissionRun {
     v.nav.position_m = {1, 2, 0};
   }
   // With `altimeter` on, every step reads the height over the surface under the vehicle, as a
-  // laser's deflected beams do: nothing nearer than `altimeter_min_m`.
+  // laser's deflected beams do: nothing nearer than `altimeter_min_m`. Where its spot reads
+  // down to something else than what holds the vehicle (a rim beside the spot), that is
+  // `altimeter_floor_z`.
   bool altimeter = false;
   float altimeter_min_m = 0.0f;
+  float altimeter_floor_z = std::numeric_limits<float>::quiet_NaN();
   GuidanceSetpoint step(const ExplorerOutput* e = nullptr) {
     t += Duration::from_s(kDt);
     v.nav.stamp = t;
-    const float height = v.nav.position_m.z() - v.surface_z;
+    const float under = std::isnan(altimeter_floor_z) ? v.surface_z : altimeter_floor_z;
+    const float height = v.nav.position_m.z() - under;
     if (altimeter && height >= altimeter_min_m) {
       newest = {t, height, 1e-4f};
       have_reading = true;
@@ -531,6 +535,7 @@ TEST(MissionController, StaleEstimateTriggersFailsafeLanding) {
   EXPECT_EQ(s.mode, GuidanceSetpoint::Mode::kVelocity);
   EXPECT_TRUE(s.velocity_mps.isZero());
   ASSERT_TRUE(r.run_until(Phase::kLanded, 20));
+  EXPECT_EQ(r.mc.touchdown_by(), TouchdownBy::kFailsafeTimer);  // no estimate, no altimeter
 }
 
 TEST(MissionController, NaNEstimateIsTreatedAsInvalid) {
@@ -852,8 +857,9 @@ TEST(MissionController, AnInvalidEstimateWhileLandingDoesNotCountAsTouchdown) {
 }
 
 // A hover mission flown to touchdown over `surface_z` (the estimate's frame); the height over
-// that surface when the mission called it landed, or NaN when it never did within 20 s.
-float touchdown_height(float surface_z, bool altimeter, float altimeter_min_m = 0.0f) {
+// that surface when the mission called it landed, or NaN when it never did within 20 s; `by`,
+// if given, what said so.
+float touchdown_height(float surface_z, bool altimeter, float altimeter_min_m = 0.0f, TouchdownBy* by = nullptr) {
   MissionRun r;
   r.altimeter = altimeter;
   r.altimeter_min_m = altimeter_min_m;
@@ -862,24 +868,79 @@ float touchdown_height(float surface_z, bool altimeter, float altimeter_min_m = 
     return std::numeric_limits<float>::infinity();
   }
   r.v.surface_z = surface_z;
-  if (!r.run_until(Phase::kLanded, 20)) return std::nanf("");
-  return r.v.nav.position_m.z() - surface_z;
+  const bool landed = r.run_until(Phase::kLanded, 20);
+  if (by != nullptr) *by = r.mc.touchdown_by();
+  return landed ? r.v.nav.position_m.z() - surface_z : std::nanf("");
 }
 
 // The estimate's height 0.75 m low (a floor step taken wrongly, iarc-arena UTM-30LX seed 25):
 // by the estimate the vehicle is down 0.55-0.87 m over the floor, where the motors were cut. The
 // altimeter says it is not; the ramp goes on down to where the readings show the floor.
 TEST(MissionController, AnEstimateLowByADeskLandsOnTheFloorByTheAltimeter) {
-  EXPECT_LT(touchdown_height(-0.75f, /*altimeter=*/true), 0.12f);
+  TouchdownBy by = TouchdownBy::kNone;
+  EXPECT_LT(touchdown_height(-0.75f, /*altimeter=*/true, 0.0f, &by), 0.12f);
+  EXPECT_EQ(by, TouchdownBy::kAltimeter);
   // By the estimate alone: down when its ramp stops 0.2 m under the floor it believes in.
-  EXPECT_NEAR(touchdown_height(-0.75f, /*altimeter=*/false), 0.55f, 0.01f);
+  EXPECT_NEAR(touchdown_height(-0.75f, /*altimeter=*/false, 0.0f, &by), 0.55f, 0.01f);
+  EXPECT_EQ(by, TouchdownBy::kEstimate);
 }
 
 // Coming down on a desk, the estimate right: its height never goes under landed_altitude_m,
-// but the altimeter reads the vehicle down on the desk.
+// but the altimeter reads the vehicle down on the desk. Without it (a UTM-30LX falls silent
+// 0.02 m up), the set-point sinking under a height that stays still says the desk holds it.
 TEST(MissionController, ComingDownOnADeskLandsOnIt) {
-  EXPECT_LT(touchdown_height(0.75f, /*altimeter=*/true), 0.12f);
-  EXPECT_TRUE(std::isnan(touchdown_height(0.75f, /*altimeter=*/false)));  // by the estimate: never
+  TouchdownBy by = TouchdownBy::kNone;
+  EXPECT_LT(touchdown_height(0.75f, /*altimeter=*/true, 0.0f, &by), 0.12f);
+  EXPECT_EQ(by, TouchdownBy::kAltimeter);
+  EXPECT_LT(touchdown_height(0.75f, /*altimeter=*/false, 0.0f, &by), 0.12f);
+  EXPECT_EQ(by, TouchdownBy::kHeldUp);
+  EXPECT_LT(touchdown_height(0.75f, /*altimeter=*/true, /*altimeter_min_m=*/0.02f, &by), 0.12f);
+  EXPECT_EQ(by, TouchdownBy::kHeldUp);
+}
+
+// Resting on a 0.3 m step's rim with the altimeter's spot beside it, over the floor: the
+// readings say 0.3 m up for as long as the motors run, and so does the estimate. Held up
+// under a set-point sinking away from it, the vehicle is down: it lands within the time the
+// ramp takes to open the gap and the wait after it, not never.
+TEST(MissionController, RestingOnARimOverALowerFloorLands) {
+  MissionRun r;
+  r.altimeter = true;
+  r.altimeter_floor_z = 0.0f;
+  ASSERT_TRUE(r.hover_until(Phase::kLand, 20, /*hover_s=*/1));
+  r.v.surface_z = 0.3f;
+  for (int i = 0; i < 400 && r.v.nav.position_m.z() > r.v.surface_z; ++i) (void)r.step();
+  ASSERT_EQ(r.v.nav.position_m.z(), r.v.surface_z);
+  ASSERT_EQ(r.mc.phase(), Phase::kLand);
+  const TimeUs rested = r.t;
+  ASSERT_TRUE(r.run_until(Phase::kLanded, 10));
+  EXPECT_EQ(r.mc.touchdown_by(), TouchdownBy::kHeldUp);
+  EXPECT_FALSE(r.mc.wants_armed());
+  const MissionParams p;
+  // The ramp, level with the vehicle when it came to rest, takes kGapM / descent_rate_mps to
+  // open the gap; then the wait.
+  EXPECT_NEAR((r.t - rested).seconds(), HeldDescent::kGapM / p.descent_rate_mps + HeldDescent::kHeldS,
+              2 * MissionRun::kDt);
+}
+
+// The vehicle stopped in the air (the point vehicle's speed set to zero) while the set-point
+// sinks away: a second for the gap to open, and less than kHeldS still under it, is not down.
+// Moving again, it lands on the floor by the estimate. Held there any longer it would be
+// called down: only a snag or an estimate that no longer follows it holds a vehicle so
+// (held_descent.hpp).
+TEST(MissionController, AVehicleStoppedInTheAirForLessThanTheWaitIsNotDown) {
+  MissionRun r;
+  ASSERT_TRUE(r.hover_until(Phase::kLand, 20, /*hover_s=*/1));
+  for (int i = 0; i < 8; ++i) (void)r.step();
+  r.v.speed = 0.0f;
+  const MissionParams p;
+  const float stopped_s = HeldDescent::kGapM / p.descent_rate_mps + HeldDescent::kHeldS - 0.1f;
+  EXPECT_FALSE(r.run_until(Phase::kLanded, stopped_s));
+  EXPECT_TRUE(r.mc.wants_armed());
+  EXPECT_GT(r.v.nav.position_m.z(), 0.5f);
+  r.v.speed = 1.0f;
+  ASSERT_TRUE(r.run_until(Phase::kLanded, 10));
+  EXPECT_EQ(r.mc.touchdown_by(), TouchdownBy::kEstimate);
+  EXPECT_LT(r.v.nav.position_m.z(), 0.12f);
 }
 
 // A UTM-30LX's deflected beams read nothing nearer than 0.1 m, 0.02 m over the floor from its

@@ -540,6 +540,14 @@ void AutonomyMission::metrics(sim::MissionMetrics& out) const {
   for (const estimation::NavFilterCounterField& f : estimation::kNavFilterCounterFields)
     out.emplace_back(std::string("nav.") + f.name, nav_counters.*f.member);
   out.emplace_back("mission_finished", stack_->finished() ? 1.0 : 0.0);
+  // What said the vehicle was down (all zero while it is not): a landing held up by something
+  // the altimeter does not see is told from one the altimeter or the estimate saw through.
+  for (std::size_t i = 1; i < mission::kTouchdownByCount; ++i) {  // 0 is kNone
+    const auto by = static_cast<mission::TouchdownBy>(i);
+    std::string key = "touchdown_by.";
+    key.append(mission::to_string(by));
+    out.emplace_back(std::move(key), stack_->mission().touchdown_by() == by ? 1.0 : 0.0);
+  }
   out.emplace_back("returned_home", stack_->mission().returned_home() ? 1.0 : 0.0);
   out.emplace_back("return_shortcuts", stack_->mission().shortcuts());
   out.emplace_back("return_realignments", stack_->mission().realignments());

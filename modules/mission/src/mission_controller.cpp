@@ -24,6 +24,17 @@ const char* to_string(Phase p) {
   return "?";
 }
 
+const char* to_string(TouchdownBy b) {
+  switch (b) {
+    case TouchdownBy::kNone: return "none";
+    case TouchdownBy::kAltimeter: return "altimeter";
+    case TouchdownBy::kEstimate: return "estimate";
+    case TouchdownBy::kHeldUp: return "held_up";
+    case TouchdownBy::kFailsafeTimer: return "failsafe_timer";
+  }
+  return "?";
+}
+
 const char* to_string(MissionKind k) {
   switch (k) {
     case MissionKind::kHover: return "hover";
@@ -112,6 +123,7 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
   params_ = p;
   trail_ = BreadcrumbTrail(p.breadcrumb_spacing_m);
   phase_ = Phase::kIdle;
+  touchdown_by_ = TouchdownBy::kNone;
   first_entered_at_.fill(std::nullopt);
   returned_home_ = false;
   stall_surveyed_ = false;
@@ -123,11 +135,26 @@ Status MissionController::configure(MissionKind kind, const MissionParams& p, co
 }
 
 void MissionController::enter(Phase p, TimeUs now) {
-  if (p != phase_ && (p == Phase::kLand || p == Phase::kFailsafeLand)) touchdown_.reset();
+  if (p != phase_ && (p == Phase::kLand || p == Phase::kFailsafeLand)) {
+    touchdown_.reset();
+    held_.reset();
+  }
   phase_ = p;
   phase_start_ = now;
   const auto i = static_cast<std::size_t>(p);
   if (!first_entered_at_[i]) first_entered_at_[i] = now;
+}
+
+std::optional<TouchdownBy> MissionController::touchdown_word(bool by_estimate) const {
+  if (const std::optional<bool> down = touchdown_.on_ground()) {
+    return *down ? std::optional<TouchdownBy>(TouchdownBy::kAltimeter) : std::nullopt;
+  }
+  return by_estimate ? std::optional<TouchdownBy>(TouchdownBy::kEstimate) : std::nullopt;
+}
+
+void MissionController::land(TouchdownBy by, TimeUs now) {
+  touchdown_by_ = by;
+  enter(Phase::kLanded, now);
 }
 
 void MissionController::descend(const NavState& nav, bool estimate_ok, float dt) {
@@ -398,10 +425,20 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       // Touchdown only on an estimate believed: an invalid one (zeros before the filter runs)
       // must not stop the motors in the air; if it lasts, the failsafe lands on a timer. The
       // altimeter, when it has spoken, says whether the vehicle is down and still
-      // (touchdown_sense.hpp); otherwise the estimate's height and vertical speed do.
-      if (estimate_ok && touchdown_.on_ground().value_or(nav.position_m.z() < params_.landed_altitude_m &&
-                                                         std::fabs(nav.velocity_mps.z()) < 0.2f))
-        enter(Phase::kLanded, t);
+      // (touchdown_sense.hpp); otherwise the estimate's height and vertical speed do. Either
+      // way, a descent held up by what the altimeter does not see is down (held_descent.hpp).
+      if (!estimate_ok) {
+        held_.interrupt();
+      } else {
+        held_.observe(dt, nav.stamp, nav.position_m.z(), nav.velocity_mps.z(), ramp_z_, touchdown_.recent_height());
+        const bool by_estimate =
+            nav.position_m.z() < params_.landed_altitude_m && std::fabs(nav.velocity_mps.z()) < 0.2f;
+        if (const std::optional<TouchdownBy> by = touchdown_word(by_estimate)) {
+          land(*by, t);
+        } else if (held_.held()) {
+          land(TouchdownBy::kHeldUp, t);
+        }
+      }
       GuidanceSetpoint s = hold(now, {hold_point_.x(), hold_point_.y(), ramp_z_}, hold_heading_);
       if (kind_ != MissionKind::kExplore) return s;
       // After exploring, home is a point of the estimate's drifted frame: held as a position it
@@ -422,9 +459,12 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       s.position_m = {last_position_.x(), last_position_.y(), ramp_z_};
       s.heading_rad = hold_heading_;
       const float fall_time = params_.takeoff_altitude_m / params_.descent_rate_mps + 3.0f;
-      if (touchdown_.on_ground().value_or(estimate_ok && nav.position_m.z() < params_.landed_altitude_m) ||
-          (t - phase_start_).seconds() > fall_time)
-        enter(Phase::kLanded, t);
+      if (const std::optional<TouchdownBy> by =
+              touchdown_word(estimate_ok && nav.position_m.z() < params_.landed_altitude_m)) {
+        land(*by, t);
+      } else if ((t - phase_start_).seconds() > fall_time) {
+        land(TouchdownBy::kFailsafeTimer, t);
+      }
       return s;
     }
     case Phase::kLanded:

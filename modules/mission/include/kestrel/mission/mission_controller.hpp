@@ -39,6 +39,7 @@
 #include "kestrel/core/static_vector.hpp"
 #include "kestrel/core/status.hpp"
 #include "kestrel/mission/breadcrumb_trail.hpp"
+#include "kestrel/mission/held_descent.hpp"
 #include "kestrel/mission/touchdown_sense.hpp"
 
 namespace kestrel::mission {
@@ -46,8 +47,14 @@ namespace kestrel::mission {
 enum class MissionKind : uint8_t { kHover, kWaypoints, kExplore };
 enum class Phase : uint8_t { kIdle, kTakeoff, kHover, kWaypoints, kExplore, kReturn, kLand, kLanded, kFailsafeLand };
 inline constexpr std::size_t kPhaseCount = static_cast<std::size_t>(Phase::kFailsafeLand) + 1;
+// What said the vehicle was down when the mission entered kLanded: the altimeter's readings
+// (touchdown_sense.hpp), the estimate's height and speed, a descent held up by something the
+// altimeter does not see (held_descent.hpp), or the failsafe's timer. kNone: not landed yet.
+enum class TouchdownBy : uint8_t { kNone, kAltimeter, kEstimate, kHeldUp, kFailsafeTimer };
+inline constexpr std::size_t kTouchdownByCount = static_cast<std::size_t>(TouchdownBy::kFailsafeTimer) + 1;
 const char* to_string(Phase p);
 const char* to_string(MissionKind k);
+const char* to_string(TouchdownBy b);
 
 struct Waypoint {
   Eigen::Vector3f position_m = Eigen::Vector3f::Zero();
@@ -64,7 +71,8 @@ struct MissionParams {
   float climb_rate_mps = 0.5f;         // set-point ramp during take-off
   float descent_rate_mps = 0.3f;       // set-point ramp during landing
   // Below this, and slow, the vehicle has landed: by the altimeter's readings when it gives
-  // them (touchdown_sense.hpp), by the estimate's height when it does not.
+  // them (touchdown_sense.hpp), by the estimate's height when it does not. A descent held up
+  // over it by what the altimeter does not see has landed too (held_descent.hpp).
   float landed_altitude_m = 0.12f;
   float hover_duration_s = 60.0f;      // hover mission: time at the set-point
   float arrive_radius_m = 0.15f;       // a set-point is reached within this distance...
@@ -136,6 +144,7 @@ class MissionController {
   const MissionParams& params() const { return params_; }
   Phase phase() const { return phase_; }
   bool finished() const { return phase_ == Phase::kLanded; }
+  TouchdownBy touchdown_by() const { return touchdown_by_; }
   // The flight home reached home (false while under way, and after landing short of it).
   bool returned_home() const { return returned_home_; }
   // Flying home, or over where it lands after that flight (home, or where the flight home
@@ -161,6 +170,10 @@ class MissionController {
 
  private:
   void enter(Phase p, TimeUs now);
+  void land(TouchdownBy by, TimeUs now);  // enters kLanded, saying why
+  // Down by the altimeter's word when it has one (touchdown_sense.hpp), by `by_estimate` (the
+  // estimate's height says so) when it has none; nullopt: not down.
+  std::optional<TouchdownBy> touchdown_word(bool by_estimate) const;
   // The flight home ended over home, or stalled near it and turned there: what lands now
   // lands where the home re-localisation searches.
   bool landing_after_flight_home() const { return returned_home_ || stall_surveyed_; }
@@ -202,6 +215,8 @@ class MissionController {
   float survey_left_rad_ = 0;  // of the take-off or the home survey turn
   float ramp_z_ = 0;
   TouchdownSense touchdown_;  // the altimeter's readings since the landing began
+  HeldDescent held_;          // the estimate and the ramp since the landing began
+  TouchdownBy touchdown_by_ = TouchdownBy::kNone;
   std::size_t waypoint_index_ = 0;
   TimeUs arrived_at_;
   bool at_waypoint_ = false;

@@ -45,6 +45,10 @@ class TouchdownSense {
   void observe(TimeUs now, const AltimeterSample* newest, float landed_height_m, float max_age_s);
 
   std::optional<bool> on_ground() const;
+  // The newest usable reading while it is recent: nullopt otherwise.
+  std::optional<float> recent_height() const {
+    return recent_ ? std::optional<float>(last_height_m_) : std::nullopt;
+  }
   // The floor under the vehicle in the estimate's frame while the newest reading is recent and
   // says airborne: the estimated height carried back to the reading's stamp at the estimated
   // vertical speed, less the reading.
