@@ -8,8 +8,8 @@
 //
 // What tells it: the height set-point well under the estimated height while that height stays
 // still. A vehicle flying on a live estimate does not stay so: 0.3 m over its set-point the
-// controller asks for about 5 m/s^2 downwards (the LQR's 0.86 of thrust per metre; the
-// simulated vehicle's 19.6 m/s^2 per unit of thrust). Only something under it, a snag, or an
+// controller asks for about 5 m/s^2 downwards (the default LQR's 0.86 of thrust per metre, as
+// kestrel-sysid prints it; the simulated vehicle's 19.6 m/s^2 per unit of thrust). Only something under it, a snag, or an
 // estimate that no longer follows the vehicle holds it there, as a land detector's "no
 // vertical movement while the thrust asks for descent". Against the last two: the estimate
 // must be a new one each step (a state that stops advancing says nothing of the vehicle), and
