@@ -5,6 +5,7 @@
 
 #include "kestrel/core/angle.hpp"
 #include "kestrel/core/clear_path.hpp"
+#include "kestrel/mission/mission_step.hpp"
 #include "kestrel/mission/trail_alignment.hpp"
 
 namespace kestrel::mission {
@@ -197,11 +198,11 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
   const bool estimate_ok = nav.valid && nav.position_m.allFinite() && nav.velocity_mps.allFinite() &&
                            std::isfinite(nav.heading_rad);
   // The ramps integrate time between steps; a long gap (a stalled loop) must not make the
-  // set-point leap, so each step advances them by at most 0.1 s. The timers run on the
+  // set-point leap, so each step advances them by at most kMaxStepS. The timers run on the
   // mission's clock t, which a step back in time does not move and a leap moves by at most
   // kMaxClockStep (more than estimate_timeout_s could usefully be: a stall still trips it).
   const Duration gap = clock_started_ ? now - last_step_ : Duration{};
-  const float dt = seen_estimate_ ? std::clamp(static_cast<float>(gap.seconds()), 0.0f, 0.1f) : 0.0f;
+  const float dt = seen_estimate_ ? std::clamp(static_cast<float>(gap.seconds()), 0.0f, kMaxStepS) : 0.0f;
   clock_ = clock_started_ ? clock_ + std::clamp(gap, Duration{}, kMaxClockStep) : now;
   clock_started_ = true;
   last_step_ = now;

@@ -35,15 +35,11 @@ void TouchdownSense::take(const AltimeterSample& r, float landed_height_m) {
     down_ = false;
     return;
   }
-  const float lo = std::min(still_min_m_, r.height_m);
-  const float hi = std::max(still_max_m_, r.height_m);
-  if (!continues || hi - lo > kStillM) {
+  if (!continues || !still_.takes(r.height_m)) {
     still_since_ = r.stamp;  // the run starts again at this reading
-    still_min_m_ = still_max_m_ = r.height_m;
-  } else {
-    still_min_m_ = lo;
-    still_max_m_ = hi;
+    still_.clear();
   }
+  still_.add(r.height_m);
   in_run_ = true;
   down_ = down_ || (r.stamp - still_since_).seconds() >= static_cast<double>(kStillS);
 }

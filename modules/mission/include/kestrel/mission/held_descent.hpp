@@ -9,8 +9,9 @@
 // What tells it: the height set-point well under the estimated height while that height stays
 // still. A vehicle flying on a live estimate does not stay so: 0.3 m over its set-point the
 // controller asks for about 5 m/s^2 downwards (the default LQR's 0.86 of thrust per metre, as
-// kestrel-sysid prints it; the simulated vehicle's 19.6 m/s^2 per unit of thrust). Only something under it, a snag, or an
-// estimate that no longer follows the vehicle holds it there, as a land detector's "no
+// kestrel-sysid prints it; the simulated vehicle's 19.6 m/s^2 per unit of thrust). Only
+// something under it, a snag, or an estimate that no longer follows the vehicle holds it
+// there, as a land detector's "no
 // vertical movement while the thrust asks for descent". Against the last two: the estimate
 // must be a new one each step (a state that stops advancing says nothing of the vehicle), and
 // the altimeter, while it reads, must read the same height too (in the air, under a frozen
@@ -20,10 +21,11 @@
 // height, the vertical speed under kStillSpeedMps, and the heights (and the readings, while
 // there are any) within kStillM of one another. A step that breaks any of it, or that gives no
 // finite value, starts the wait again.
-#include <algorithm>
 #include <optional>
 
 #include "kestrel/core/time.hpp"
+#include "kestrel/mission/mission_step.hpp"
+#include "kestrel/mission/still_band.hpp"
 
 namespace kestrel::mission {
 
@@ -40,8 +42,8 @@ class HeldDescent {
   static constexpr float kHeldS = 1.0f;
 
   void reset() { *this = HeldDescent{}; }
-  // Each landing step with an estimate believed: the step's time (`dt_s`, the mission's,
-  // at most 0.1 s a step so that a stalled loop cannot make a second of two steps), the
+  // Each landing step with an estimate believed: the step's time (`dt_s`, counted for at most
+  // kMaxStepS so that a stalled loop cannot make a second of two steps), the
   // estimate's stamp, height and vertical speed, the height set-point of this step, and the
   // altimeter's newest reading while it is recent (nullopt: none).
   void observe(float dt_s, TimeUs estimate_stamp, float height_m, float vertical_speed_mps, float setpoint_z_m,
@@ -51,19 +53,11 @@ class HeldDescent {
   bool held() const { return in_run_ && run_ >= Duration::from_s(kHeldS); }
 
  private:
-  struct Band {
-    float lo = 0, hi = 0;
-    bool any = false;
-    bool takes(float v) const { return !any || (std::max(hi, v) - std::min(lo, v) <= kStillM); }
-    void add(float v);
-  };
-
   bool in_run_ = false;
-  Duration run_;        // the steps' time since the run's first step (whole microseconds)
-  bool stamped_ = false;
-  TimeUs last_stamp_;   // of the estimate at the last step observed
-  Band heights_;
-  Band readings_;
+  Duration run_;                          // the steps' time since the run's first step
+  std::optional<TimeUs> newest_stamp_;    // of the estimates observed
+  StillBand heights_{kStillM};
+  StillBand readings_{kStillM};
 };
 
 }  // namespace kestrel::mission

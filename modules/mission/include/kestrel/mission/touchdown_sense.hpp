@@ -23,6 +23,7 @@
 #include <optional>
 
 #include "kestrel/core/messages.hpp"
+#include "kestrel/mission/still_band.hpp"
 
 namespace kestrel::mission {
 
@@ -66,11 +67,10 @@ class TouchdownSense {
   bool recent_ = false;    // the newest usable reading, at the last observe()
   bool low_ = false;       // ... lay under the landed height
   // The run of low readings within kStillM of one another that ends with the newest: whether
-  // there is one, its first stamp and its lowest and highest heights.
+  // there is one, its first stamp and its heights.
   bool in_run_ = false;
   TimeUs still_since_;
-  float still_min_m_ = 0;
-  float still_max_m_ = 0;
+  StillBand still_{kStillM};
   bool down_ = false;      // such a run has lasted kStillS, and no reading over the height since
 };
 
