@@ -62,13 +62,15 @@ endfunction()
 
 # A GoogleTest executable registered with CTest; under the ARM presets CTest runs it through
 # CMAKE_CROSSCOMPILING_EMULATOR (qemu-arm). LABELS lets CI pick groups (unit, sim, realdata).
-# PARTS (GoogleTest filters) registers one CTest test per filter, `name.1` ... plus `name.rest`
-# for every test no filter names, so a binary of long flights runs on all of CI's cores.
+# PARTS (GoogleTest filters, Suite.Test) registers one CTest test per filter, `name.Test`, plus
+# `name.rest` for every test no filter names, so a binary of long flights runs on all of CI's
+# cores and a preset can leave one flight out by its name.
 function(kestrel_test name)
   cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS;PARTS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} kestrel_test_support GTest::gtest)
-  target_compile_options(${name} PRIVATE ${KESTREL_COMMON_WARNINGS})
+  target_compile_options(${name} PRIVATE ${KESTREL_COMMON_WARNINGS} ${KESTREL_TEST_PCH_FLAGS})
+  target_precompile_headers(${name} REUSE_FROM kestrel_test_pch)
   target_compile_definitions(${name} PRIVATE
       KESTREL_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
       KESTREL_SHARED_DATA_DIR="${CMAKE_SOURCE_DIR}/../shared/data")
@@ -85,11 +87,10 @@ function(kestrel_test name)
   endif()
   # A fresh clone has no CTest cost data, so the parts would start in declaration order; a
   # high COST starts them first, before the short tests that can fill in beside them.
-  set(index 0)
   foreach(filter ${ARG_PARTS})
-    math(EXPR index "${index} + 1")
-    add_test(NAME ${name}.${index} COMMAND ${name} --gtest_brief=1 --gtest_filter=${filter})
-    set_tests_properties(${name}.${index} PROPERTIES
+    string(REGEX REPLACE "^.*\\." "" part ${filter})
+    add_test(NAME ${name}.${part} COMMAND ${name} --gtest_brief=1 --gtest_filter=${filter})
+    set_tests_properties(${name}.${part} PROPERTIES
         TIMEOUT ${ARG_TIMEOUT} LABELS "${ARG_LABELS}" COST 1000)
   endforeach()
   list(JOIN ARG_PARTS ":" named)
