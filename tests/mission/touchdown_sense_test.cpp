@@ -159,6 +159,38 @@ TEST(TouchdownSense, AGapOrAnUnusableReadingStartsTheRunAgain) {
   EXPECT_EQ(garbage.t.on_ground(), kNotDown);
 }
 
+// A vehicle rocking on its legs, read at the uneven gaps of a starved loop, never reads still;
+// low readings, none over the landed height, each within kLowGapS of the one before, are
+// touchdown after kLowS all the same. A reading over the height, or a longer gap, starts the
+// wait again.
+TEST(TouchdownSense, LowReadingsThatNeverHoldStillAreTouchdownAfterTheLowWait) {
+  const double gaps[] = {0.04, 0.27, 0.08, 0.15, 0.05, 0.2};
+  auto rock = [&](Sense& s, double from_s, double until_s) {
+    int i = 0;
+    for (double t = from_s; t < until_s; t += gaps[i % 6], ++i) {
+      s.read(t, i % 2 == 0 ? 0.01f : 0.04f);
+      if (t - from_s < TouchdownSense::kLowS) {
+        EXPECT_EQ(s.t.on_ground(), kNotDown) << t;
+      }
+    }
+  };
+  const double low_s = TouchdownSense::kLowS;
+  Sense s;
+  rock(s, 1.0, 1.0 + low_s + 0.3);
+  EXPECT_EQ(s.t.on_ground(), kDown);
+
+  Sense lifted;
+  rock(lifted, 1.0, 1.0 + low_s - 0.3);
+  lifted.read(1.0 + low_s - 0.2, 0.2f);  // over the landed height: not standing on the floor
+  rock(lifted, 1.0 + low_s - 0.1, 1.0 + low_s + 0.5);
+  EXPECT_EQ(lifted.t.on_ground(), kNotDown);
+
+  Sense gap;
+  rock(gap, 1.0, 1.0 + low_s - 0.3);
+  rock(gap, 1.0 + low_s - 0.3 + TouchdownSense::kLowGapS + 0.05, 1.0 + low_s + 0.6);
+  EXPECT_EQ(gap.t.on_ground(), kNotDown);
+}
+
 TEST(TouchdownSense, ResetForgetsEverything) {
   Sense s;
   s.read(1.0, 0.05f);

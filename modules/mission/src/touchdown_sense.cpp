@@ -16,7 +16,7 @@ void TouchdownSense::observe(TimeUs now, const AltimeterSample* newest, float la
     if (usable) {
       take(*newest, landed_height_m);
     } else {
-      in_run_ = false;  // it ends a run of low readings
+      in_run_ = low_run_ = false;  // it ends a run of low readings
     }
   }
   // A reading stamped ahead of now (clocks a little apart) is as recent as one stamped now.
@@ -25,23 +25,28 @@ void TouchdownSense::observe(TimeUs now, const AltimeterSample* newest, float la
 }
 
 void TouchdownSense::take(const AltimeterSample& r, float landed_height_m) {
-  const bool continues = in_run_ && (r.stamp - last_stamp_).seconds() <= static_cast<double>(kMaxGapS);
+  const double gap_s = (r.stamp - last_stamp_).seconds();
+  const bool continues = in_run_ && gap_s <= static_cast<double>(kMaxGapS);
+  const bool stays_low = low_run_ && gap_s <= static_cast<double>(kLowGapS);
   seen_ = true;
   last_stamp_ = r.stamp;
   last_height_m_ = r.height_m;
   low_ = r.height_m < landed_height_m;
   if (!low_) {
-    in_run_ = false;
+    in_run_ = low_run_ = false;
     down_ = false;
     return;
   }
+  if (!stays_low) low_since_ = r.stamp;
+  low_run_ = true;
   if (!continues || !still_.takes(r.height_m)) {
     still_since_ = r.stamp;  // the run starts again at this reading
     still_.clear();
   }
   still_.add(r.height_m);
   in_run_ = true;
-  down_ = down_ || (r.stamp - still_since_).seconds() >= static_cast<double>(kStillS);
+  down_ = down_ || (r.stamp - still_since_).seconds() >= static_cast<double>(kStillS) ||
+          (r.stamp - low_since_).seconds() >= static_cast<double>(kLowS);
 }
 
 std::optional<bool> TouchdownSense::on_ground() const {

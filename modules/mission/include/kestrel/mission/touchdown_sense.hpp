@@ -13,7 +13,11 @@
 //    not see the stop at once, the impact being too short for its IMU, and its height runs on
 //    under the floor until its readings re-lock it), and none over it since, recent or not (a
 //    laser's deflected beams read nothing nearer than its minimum range: silence after the
-//    vehicle was read still on the floor is the floor);
+//    vehicle was read still on the floor is the floor); or low readings, each within kLowGapS
+//    of the one before, none over it, for kLowS, still or not: a vehicle the landing ramp
+//    drives under the floor does not stay that near it for so long unless it stands on it, and
+//    one rocking on its legs while a starved loop (session 61's TSan run: 72 ms to match a
+//    25 ms scan) corrects it late never reads still;
 //  - none (nullopt): no reading, or the newest stale: the caller then goes by the estimate. The
 //    UTM-30LX, whose 0.1 m minimum range is more than its 0.08 m mount height, falls silent while
 //    still descending: its landings are the estimate's.
@@ -35,6 +39,8 @@ class TouchdownSense {
   static constexpr float kStillM = 0.02f;
   static constexpr float kStillS = 0.09f;
   static constexpr float kMaxGapS = 0.15f;
+  static constexpr float kLowS = 2.0f;
+  static constexpr float kLowGapS = 0.5f;
   // On the floor a reading is the mount's height less its calibration, a few millimetres either
   // side of zero; one further under the floor than this is not a height.
   static constexpr float kMinHeightM = -0.1f;
@@ -71,6 +77,8 @@ class TouchdownSense {
   bool in_run_ = false;
   TimeUs still_since_;
   StillBand still_{kStillM};
+  bool low_run_ = false;   // the run of low readings, still or not, that ends with the newest
+  TimeUs low_since_;
   bool down_ = false;      // such a run has lasted kStillS, and no reading over the height since
 };
 
