@@ -15,6 +15,10 @@ endif()
 # firmware class (a HAL driver) needs its typeinfo, which -fno-rtti code never emits.
 add_compile_options($<$<COMPILE_LANGUAGE:CXX>:-fno-rtti>)
 
+# The tests' own files may compile with other optimisation than the build type's (an -O flag;
+# empty: the build type's), tests/CMakeLists.txt says why.
+set(KESTREL_TEST_OPTIMIZATION "" CACHE STRING "optimisation flag of the tests' own files")
+
 set(KESTREL_COMMON_WARNINGS -Wall -Wextra -Werror -Werror=shadow -Werror=undef
     -Wno-psabi -Wno-missing-field-initializers)
 # -Wno-psabi: GCC's notes on an old ARM ABI change are not about our code.
@@ -69,7 +73,7 @@ function(kestrel_test name)
   cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS;PARTS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} kestrel_test_support GTest::gtest)
-  target_compile_options(${name} PRIVATE ${KESTREL_COMMON_WARNINGS} ${KESTREL_TEST_PCH_FLAGS})
+  target_compile_options(${name} PRIVATE ${KESTREL_TEST_FLAGS})
   target_precompile_headers(${name} REUSE_FROM kestrel_test_pch)
   target_compile_definitions(${name} PRIVATE
       KESTREL_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
