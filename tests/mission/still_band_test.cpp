@@ -27,7 +27,7 @@ TEST(StillBand, AValueThatCreepsOutIsRefusedAgainstTheWholeRunNotTheLastValue) {
     ASSERT_TRUE(band.takes(v));
     band.add(v);
   }
-  EXPECT_FALSE(band.takes(1.025f));  // 0.005 over the last value, 0.025 over the first
+  EXPECT_FALSE(band.takes(1.025f));  // 0.01 over the last value, 0.025 over the first
 }
 
 TEST(StillBand, ClearStartsANewRun) {

@@ -191,6 +191,28 @@ TEST(TouchdownSense, LowReadingsThatNeverHoldStillAreTouchdownAfterTheLowWait) {
   EXPECT_EQ(gap.t.on_ground(), kNotDown);
 }
 
+// The low wait's edges: readings kLowGapS apart still make one run, a longer gap or a reading
+// out of reason between two low ones starts it again.
+TEST(TouchdownSense, TheLowWaitHoldsAcrossGapsUpToItsLimitAndNotAcrossGarbage) {
+  const double step = TouchdownSense::kLowGapS;
+  const int steps = static_cast<int>(TouchdownSense::kLowS / step + 0.5);  // kLowS in steps
+  auto rock = [](Sense& s, double t, int i) { s.read(t, i % 2 == 0 ? 0.01f : 0.04f); };
+  Sense edge;
+  for (int i = 0; i <= steps; ++i) {
+    rock(edge, 1.0 + step * i, i);
+    EXPECT_EQ(edge.t.on_ground(), i == steps ? kDown : kNotDown) << i;
+  }
+  Sense longer;
+  for (int i = 0; i <= steps; ++i) rock(longer, 1.0 + step * i + (i >= 2 ? 0.01 : 0.0), i);
+  EXPECT_EQ(longer.t.on_ground(), kNotDown);
+  Sense garbage;
+  for (int i = 0; i <= steps; ++i) {
+    rock(garbage, 1.0 + step * i, i);
+    if (i == 1) garbage.read(1.0 + step * i + 0.01, std::nanf(""));
+  }
+  EXPECT_EQ(garbage.t.on_ground(), kNotDown);
+}
+
 TEST(TouchdownSense, ResetForgetsEverything) {
   Sense s;
   s.read(1.0, 0.05f);

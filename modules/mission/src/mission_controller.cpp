@@ -425,7 +425,7 @@ GuidanceSetpoint MissionController::step(TimeUs now, const NavState& nav, const 
       }
       // Touchdown only on an estimate believed: an invalid one (zeros before the filter runs)
       // must not stop the motors in the air; if it lasts, the failsafe lands on a timer. The
-      // altimeter, when it has spoken, says whether the vehicle is down and still
+      // altimeter, when it has spoken, says whether the vehicle is down: still, or low for long
       // (touchdown_sense.hpp); otherwise the estimate's height and vertical speed do. Either
       // way, a descent held up by what the altimeter does not see is down (held_descent.hpp).
       if (!estimate_ok) {

@@ -7,14 +7,16 @@
 // under the vehicle, which is where it touches down.
 //
 // Its verdict, from the readings since reset():
-//  - not down: the newest reading is recent, and over the landed height or not yet still;
+//  - not down: the newest reading is recent, and over the landed height or low but neither
+//    still yet nor low for kLowS;
 //  - on the ground: readings under it, each within kMaxGapS of the one before, have stayed within
 //    kStillM of one another for kStillS (the vehicle stopped: the filter's vertical velocity does
 //    not see the stop at once, the impact being too short for its IMU, and its height runs on
 //    under the floor until its readings re-lock it), and none over it since, recent or not (a
 //    laser's deflected beams read nothing nearer than its minimum range: silence after the
 //    vehicle was read still on the floor is the floor); or low readings, each within kLowGapS
-//    of the one before, none over it, for kLowS, still or not: a vehicle the landing ramp
+//    of the one before, none over it, for kLowS, still or not (silence after them is the floor
+//    too): a vehicle the landing ramp
 //    drives under the floor does not stay that near it for so long unless it stands on it, and
 //    one rocking on its legs while a starved loop (session 61's TSan run: 72 ms to match a
 //    25 ms scan) corrects it late never reads still;
@@ -79,7 +81,7 @@ class TouchdownSense {
   StillBand still_{kStillM};
   bool low_run_ = false;   // the run of low readings, still or not, that ends with the newest
   TimeUs low_since_;
-  bool down_ = false;      // such a run has lasted kStillS, and no reading over the height since
+  bool down_ = false;      // a still run has lasted kStillS or a low run kLowS, none over since
 };
 
 }  // namespace kestrel::mission
