@@ -11,11 +11,10 @@
 // controller asks for about 5 m/s^2 downwards (the default LQR's 0.86 of thrust per metre, as
 // kestrel-sysid prints it; the simulated vehicle's 19.6 m/s^2 per unit of thrust). Only
 // something under it, a snag, or an estimate that no longer follows the vehicle holds it
-// there, as a land detector's "no
-// vertical movement while the thrust asks for descent". Against the last two: the estimate
-// must be a new one each step (a state that stops advancing says nothing of the vehicle), and
-// the altimeter, while it reads, must read the same height too (in the air, under a frozen
-// estimate, its readings move; on a rim they do not).
+// there, as a land detector's "no vertical movement while the thrust asks for descent".
+// Against the last two: the estimate must be a new one each step (a state that stops advancing
+// says nothing of the vehicle), and the altimeter, while it reads, must read the same height
+// too (in the air, under a frozen estimate, its readings move; on a rim they do not).
 //
 // held(): for kHeldS of steps, every one with the set-point at least kGapM under the estimated
 // height, the vertical speed under kStillSpeedMps, and the heights (and the readings, while

@@ -16,10 +16,9 @@
 //    laser's deflected beams read nothing nearer than its minimum range: silence after the
 //    vehicle was read still on the floor is the floor); or low readings, each within kLowGapS
 //    of the one before, none over it, for kLowS, still or not (silence after them is the floor
-//    too): a vehicle the landing ramp
-//    drives under the floor does not stay that near it for so long unless it stands on it, and
-//    one rocking on its legs while a starved loop (session 61's TSan run: 72 ms to match a
-//    25 ms scan) corrects it late never reads still;
+//    too): a vehicle the landing ramp drives under the floor does not stay that near it for so
+//    long unless it stands on it, and one rocking on its legs while a starved loop (session
+//    61's TSan run: 72 ms to match a 25 ms scan) corrects it late never reads still;
 //  - none (nullopt): no reading, or the newest stale: the caller then goes by the estimate. The
 //    UTM-30LX, whose 0.1 m minimum range is more than its 0.08 m mount height, falls silent while
 //    still descending: its landings are the estimate's.
